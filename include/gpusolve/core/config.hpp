@@ -1,0 +1,42 @@
+// Compiler and toolkit detection shared by every gpusolve header.
+#pragma once
+
+#include <cstddef>
+
+// Functions that run on both backends are marked GPUSOLVE_HD. Under a plain
+// C++ compiler the marker expands to nothing, so the same bodies build with g++.
+#if defined(__CUDACC__)
+#define GPUSOLVE_HD __host__ __device__
+#define GPUSOLVE_HAS_NVCC 1
+#else
+#define GPUSOLVE_HD
+#define GPUSOLVE_HAS_NVCC 0
+#endif
+
+// The CUDA runtime API (memory, streams, events) is usable from plain C++ when
+// its header is on the include path; kernels need nvcc (GPUSOLVE_HAS_NVCC).
+// Define GPUSOLVE_NO_CUDART to build a strictly CPU-only program.
+#if !defined(GPUSOLVE_NO_CUDART) && (defined(__CUDACC__) || __has_include(<cuda_runtime_api.h>))
+#define GPUSOLVE_HAS_CUDART 1
+#include <cuda_runtime_api.h>
+#else
+#define GPUSOLVE_HAS_CUDART 0
+#endif
+
+// True only while compiling device code.
+#if defined(__CUDA_ARCH__)
+#define GPUSOLVE_DEVICE_CODE 1
+#else
+#define GPUSOLVE_DEVICE_CODE 0
+#endif
+
+namespace gpusolve {
+
+#if GPUSOLVE_HAS_CUDART
+using stream_t = cudaStream_t;
+#else
+// Stand-in so that signatures taking a stream compile without the toolkit.
+using stream_t = void*;
+#endif
+
+}  // namespace gpusolve

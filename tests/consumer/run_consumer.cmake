@@ -1,0 +1,27 @@
+# Configures, builds and runs tests/consumer in one mode; any failure fails the test.
+# -DMODE=find_package|add_subdirectory -DSOURCE_DIR=... -DBUILD_DIR=... -DWORK_DIR=...
+file(REMOVE_RECURSE ${WORK_DIR})
+set(args -S ${SOURCE_DIR}/tests/consumer -B ${WORK_DIR}/build -DGPUSOLVE_CONSUMER_MODE=${MODE})
+if(MODE STREQUAL "find_package")
+  execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix
+    RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "install into ${WORK_DIR}/prefix failed")
+  endif()
+  list(APPEND args -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
+else()
+  # The vendored copy is not the top-level project: its tests and examples stay off.
+  list(APPEND args -DGPUSOLVE_SOURCE_DIR=${SOURCE_DIR} -DGPUSOLVE_ENABLE_CUDA=OFF)
+endif()
+foreach(step IN ITEMS configure build run)
+  if(step STREQUAL "configure")
+    execute_process(COMMAND ${CMAKE_COMMAND} ${args} RESULT_VARIABLE rc)
+  elseif(step STREQUAL "build")
+    execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/build RESULT_VARIABLE rc)
+  else()
+    execute_process(COMMAND ${WORK_DIR}/build/consumer RESULT_VARIABLE rc)
+  endif()
+  if(rc)
+    message(FATAL_ERROR "consumer (${MODE}): ${step} failed: ${rc}")
+  endif()
+endforeach()

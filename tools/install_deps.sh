@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs what building and testing gpusolve needs on a fresh Debian/Ubuntu
+# machine: CMake, a C++ compiler, Catch2 and Python 3 from the distribution.
+# The CUDA toolkit (nvcc, CCCL) is expected to be installed already; without it
+# only the host-compiler parts build.
+set -euo pipefail
+
+need=()
+command -v cmake >/dev/null 2>&1 || need+=(cmake)
+command -v g++ >/dev/null 2>&1 || need+=(g++)
+command -v python3 >/dev/null 2>&1 || need+=(python3)
+[ -f /usr/include/catch2/catch.hpp ] || [ -f /usr/include/catch2/catch_all.hpp ] || need+=(catch2)
+[ -n "${GPUSOLVE_EXTRA_PACKAGES:-}" ] && need+=(${GPUSOLVE_EXTRA_PACKAGES})
+
+if [ ${#need[@]} -gt 0 ]; then
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  echo "install_deps: installing ${need[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${need[@]}"
+fi
+if ! command -v nvcc >/dev/null 2>&1 && [ -x /usr/local/cuda/bin/nvcc ]; then
+  echo "install_deps: nvcc is at /usr/local/cuda/bin; add it to PATH to build the CUDA targets"
+fi
