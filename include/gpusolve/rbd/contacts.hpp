@@ -1,0 +1,159 @@
+// Contacts: the structure-of-arrays store of all contacts of one time step (thesis Fig. 14).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/core/device.hpp"
+#include "gpusolve/rbd/contact_model.hpp"
+
+namespace gpusolve::rbd {
+
+// One entry per contact in every field; VectorD2 fields hold one component per
+// row, so element (i, c) is component c of contact i (the layout of Bodies).
+//
+// Conventions (thesis 3.3): the normal n points from body b to body a; ra and rb
+// go from each body's centre of mass to the contact point; phi0 is the gap along
+// n at the start of the step (negative when the bodies overlap). The narrow phase
+// fills a, b, n, ra, rb, phi0 and, for models with friction, mu (View::set also
+// builds the tangents). The solver fills dinv and x.
+//
+// Fields a model does not need (t, o, mu for Frictionless) are never allocated:
+// their views are empty.
+template <class Device, class T, class Model>
+struct Contacts {
+  static_assert(std::is_floating_point_v<T>, "Contacts: T must be float or double");
+  using device_type = Device;
+  using value_type = T;
+  using model_type = Model;
+  static constexpr std::size_t rows = Model::rows;
+  template <class E>
+  using D1 = VectorD1<E, device_is<Device>>;
+  using VecD1 = D1<T>;
+  using VecD2 = VectorD2<T, device_is<Device>>;
+
+  D1<std::uint32_t> a, b;  // body indices
+  VecD2 n, t, o;           // n x 3: normal (b -> a) and the two tangents
+  VecD2 ra, rb;            // n x 3: centre of mass -> contact point
+  VecD1 phi0;              // gap at the start of the step
+  VecD1 mu;                // friction coefficient
+  VecD2 dinv;              // n x rows^2: inverse diagonal block, row-major (i, r*rows + c)
+  VecD2 x;                 // n x rows: impulse (normal, t, o)
+
+  Contacts() = default;
+  explicit Contacts(std::size_t n) { resize(n); }
+
+  // Sets the number of contacts. Storage only grows (geometrically), so a
+  // step with fewer contacts than the last reuses it; contents are unspecified
+  // afterwards.
+  void resize(std::size_t count) {
+    if (count > capacity_) {
+      std::size_t cap = capacity_ + capacity_ / 2;
+      if (cap < count) cap = count;
+      a.resize(cap);
+      b.resize(cap);
+      phi0.resize(cap);
+      for (VecD2* f : {&n, &ra, &rb}) f->resize(cap, 3);
+      dinv.resize(cap, rows * rows);
+      x.resize(cap, rows);
+      if constexpr (Model::friction) {
+        t.resize(cap, 3);
+        o.resize(cap, 3);
+        mu.resize(cap);
+      }
+      capacity_ = cap;
+    }
+    n_ = count;
+  }
+  std::size_t size() const { return n_; }
+  std::size_t capacity() const { return capacity_; }
+
+  template <class E>
+  using D1View = decltype(std::declval<D1<E>&>().view());
+  using VecD1View = D1View<T>;
+  using VecD2View = decltype(std::declval<VecD2&>().view());
+
+  // Kernel-side handle: trivially copyable, passed by value to launch. Its
+  // extents are the logical size, not the capacity.
+  struct View {
+    std::size_t count;
+    D1View<std::uint32_t> a, b;
+    VecD2View n, t, o, ra, rb;
+    VecD1View phi0, mu;
+    VecD2View dinv, x;
+
+    GPUSOLVE_HD std::size_t size() const { return count; }
+
+    // Writes contact i. V is any vector type with operator[](0..2). The
+    // tangents are built from n, so friction rows are well defined for any
+    // normal; mu is ignored by models without friction.
+    template <class V>
+    GPUSOLVE_HD void set(std::size_t i, std::uint32_t body_a, std::uint32_t body_b, const V& normal,
+                         const V& r_a, const V& r_b, T gap, T friction) const {
+      a[i] = body_a;
+      b[i] = body_b;
+      for (std::size_t c = 0; c < 3; ++c) {
+        n(i, c) = normal[c];
+        ra(i, c) = r_a[c];
+        rb(i, c) = r_b[c];
+      }
+      phi0[i] = gap;
+      if constexpr (Model::friction) {
+        mu[i] = friction;
+        set_tangents(i);
+      } else {
+        (void)friction;
+      }
+    }
+
+    // t = unit vector orthogonal to n (built against the axis n is least
+    // aligned with, so it never degenerates), o = n x t.
+    GPUSOLVE_HD void set_tangents(std::size_t i) const {
+      const T nx = n(i, 0), ny = n(i, 1), nz = n(i, 2);
+      T tx, ty, tz;
+      if (std::fabs(nx) <= std::fabs(ny) && std::fabs(nx) <= std::fabs(nz)) {
+        tx = T(0), ty = nz, tz = -ny;  // n x e_x
+      } else if (std::fabs(ny) <= std::fabs(nz)) {
+        tx = -nz, ty = T(0), tz = nx;  // n x e_y
+      } else {
+        tx = ny, ty = -nx, tz = T(0);  // n x e_z
+      }
+      const T inv = T(1) / std::sqrt(tx * tx + ty * ty + tz * tz);
+      tx *= inv, ty *= inv, tz *= inv;
+      t(i, 0) = tx, t(i, 1) = ty, t(i, 2) = tz;
+      o(i, 0) = ny * tz - nz * ty;
+      o(i, 1) = nz * tx - nx * tz;
+      o(i, 2) = nx * ty - ny * tx;
+    }
+  };
+  static_assert(std::is_trivially_copyable_v<View>);
+
+  View view() {
+    return View{n_,           logical(a.view()),  logical(b.view()),    logical(n.view()),
+                logical(t.view()), logical(o.view()), logical(ra.view()), logical(rb.view()),
+                logical(phi0.view()), logical(mu.view()), logical(dinv.view()), logical(x.view())};
+  }
+
+ private:
+  // Trims a view of capacity-sized storage to the logical size (empty stays empty).
+  template <class V>
+  V logical(V v) const {
+    if constexpr (std::is_same_v<V, VecD2View>) {
+      if (v.nx != 0) v.nx = n_;
+    } else {
+      if (v.n != 0) v.n = n_;
+    }
+    return v;
+  }
+
+  std::size_t n_ = 0;
+  std::size_t capacity_ = 0;
+};
+
+}  // namespace gpusolve::rbd
