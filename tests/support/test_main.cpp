@@ -1,7 +1,7 @@
 // Test runner shared by the host and GPU suites. The GPU suite is built with
 // GPUSOLVE_TESTS_NEED_GPU: without a usable GPU it exits with code 77, which
 // ctest reports as skipped, never as passed.
-#if !__has_include(<catch2/catch_all.hpp>)
+#if __has_include(<catch2/catch.hpp>)
 #define CATCH_CONFIG_RUNNER
 #endif
 #include "catch_compat.hpp"
