@@ -1,0 +1,22 @@
+// Umbrella header: every container, memory and policy header of gpusolve's first layer.
+#pragma once
+
+#include "gpusolve/container/copy.hpp"
+#include "gpusolve/container/layout.hpp"
+#include "gpusolve/container/parameters.hpp"
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/container/vector_d2_offset.hpp"
+#include "gpusolve/container/vector_d3.hpp"
+#include "gpusolve/container/vector_view.hpp"
+#include "gpusolve/memory/allocator.hpp"
+#include "gpusolve/memory/buffer.hpp"
+#include "gpusolve/memory/copy.hpp"
+#include "gpusolve/memory/cuda_device_allocator.hpp"
+#include "gpusolve/memory/cuda_host_allocator.hpp"
+#include "gpusolve/memory/device_memory.hpp"
+#include "gpusolve/memory/host_memory.hpp"
+#include "gpusolve/memory/standard_allocator.hpp"
+#include "gpusolve/policy/compiletime.hpp"
+#include "gpusolve/policy/runtime.hpp"
+#include "gpusolve/policy/runtime_stopwatch.hpp"
