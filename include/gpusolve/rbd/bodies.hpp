@@ -8,6 +8,7 @@
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/rbd/shapes.hpp"
 
@@ -15,7 +16,8 @@ namespace gpusolve::rbd {
 
 // One entry per body in every field; VectorD2 fields hold one component per row,
 // so element (i, c) is component c of body i and consecutive threads read
-// consecutive bodies. 3x3 matrices are stored row-major in 9 rows: (i, 3*r + c).
+// consecutive bodies. 3x3 matrices are row-major in 9 rows: (i, 3*r + c).
+// Quaternions are (w, x, y, z), as in gpusolve::math.
 template <class Device, class T = float>
 struct Bodies {
   static_assert(std::is_floating_point_v<T>, "Bodies: T must be float or double");
@@ -30,12 +32,12 @@ struct Bodies {
   D1<std::uint8_t> shape;   // ShapeKind
   VecD2 shape_param;        // n x 4, see shapes.hpp
   VecD1 inv_mass;           // 0 for fixed bodies
-  VecD2 inertia;            // n x 9, body frame (needed by the gyroscopic term)
+  VecD2 inertia;            // n x 9, body frame (the gyroscopic term needs it)
   VecD2 inv_inertia_body;   // n x 9, body frame; 0 for fixed bodies
   VecD2 inv_inertia;        // n x 9, world frame R I^-1 R^T
   VecD2 pos;                // n x 3, centre of mass (planes: the point n*d)
-  VecD2 q;                  // n x 4, orientation quaternion (x, y, z, w), unit length
-  VecD2 R;                  // n x 9, rotation matrix of q
+  VecD2 q;                  // n x 4, unit orientation quaternion (w, x, y, z)
+  VecD2 R;                  // n x 9, rotation matrix of q (body -> world)
   VecD2 v;                  // n x 3, linear velocity
   VecD2 w;                  // n x 3, angular velocity (world frame)
   VecD2 force;              // n x 3, external force applied in the next integration
@@ -47,32 +49,44 @@ struct Bodies {
   Bodies() = default;
   explicit Bodies(std::size_t n) { resize(n); }
 
-  // Reallocates every field for n bodies; contents are unspecified afterwards.
-  void resize(std::size_t n) {
-    n_ = n;
-    for_each_d1([n](auto& f) { f.resize(n); });
-    for_each_d2([n](auto& f, std::size_t rows) { f.resize(n, rows); });
+  // Sets the number of bodies. Storage only grows: within capacity() the
+  // contents are kept; beyond it every field is reallocated (all zero after).
+  // Returns whether it reallocated.
+  bool resize(std::size_t count) {
+    const bool grow = count > capacity_;
+    if (grow) {
+      zip_fields(*this, *this, [count](auto& f, auto&, std::size_t rows, bool) {
+        if constexpr (std::remove_reference_t<decltype(f)>::rank == 1)
+          f.resize(count);
+        else
+          f.resize(count, rows);
+      });
+      capacity_ = count;
+    }
+    n_ = count;
+    return grow;
   }
   std::size_t size() const { return n_; }
+  std::size_t capacity() const { return capacity_; }
 
-  // Copies every field from another backend (assignment between host and device).
+  // Copies every field from a store on any backend (same capacity after).
   template <class D2>
   Bodies& operator=(const Bodies<D2, T>& o) {
+    if (capacity_ != o.capacity()) *this = Bodies(o.capacity());
     n_ = o.size();
-    status = o.status; shape = o.shape; shape_param = o.shape_param; inv_mass = o.inv_mass;
-    inertia = o.inertia; inv_inertia_body = o.inv_inertia_body; inv_inertia = o.inv_inertia;
-    pos = o.pos; q = o.q; R = o.R; v = o.v; w = o.w; force = o.force; torque = o.torque;
-    radius = o.radius; aabb = o.aabb; motion = o.motion;
+    zip_fields(*this, o, [](auto& dst, const auto& src, std::size_t, bool) { dst = src; });
     return *this;
   }
 
-  // Kernel-side handle: trivially copyable, passed by value to launch.
   template <class E>
   using D1View = decltype(std::declval<D1<E>&>().view());
   using VecD1View = D1View<T>;
   using VecD2View = decltype(std::declval<VecD2&>().view());
+
+  // Kernel-side handle: trivially copyable, passed by value to launch. Its
+  // extents are the logical size, not the capacity.
   struct View {
-    std::size_t n;
+    std::size_t count;
     D1View<std::uint8_t> status, shape;
     VecD2View shape_param;
     VecD1View inv_mass;
@@ -80,27 +94,71 @@ struct Bodies {
     VecD1View radius;
     VecD2View aabb;
     VecD1View motion;
-  };
-  View view() {
-    return View{n_,      status.view(), shape.view(),  shape_param.view(), inv_mass.view(),
-                inertia.view(), inv_inertia_body.view(), inv_inertia.view(), pos.view(),
-                q.view(), R.view(), v.view(), w.view(), force.view(), torque.view(),
-                radius.view(), aabb.view(), motion.view()};
-  }
 
-  // Visits every VectorD2 field with its number of rows (used by resize and the BodyManager).
-  template <class F>
-  void for_each_d2(F&& f) {
-    f(shape_param, shape_param_rows); f(inertia, 9); f(inv_inertia_body, 9); f(inv_inertia, 9);
-    f(pos, 3); f(q, 4); f(R, 9); f(v, 3); f(w, 3); f(force, 3); f(torque, 3); f(aabb, 6);
-  }
-  template <class F>
-  void for_each_d1(F&& f) {
-    f(status); f(shape); f(inv_mass); f(radius); f(motion);
+    GPUSOLVE_HD std::size_t size() const { return count; }
+    // A body that the integrator moves.
+    GPUSOLVE_HD bool moving(std::size_t i) const { return status[i] == active; }
+  };
+  static_assert(std::is_trivially_copyable_v<View>);
+
+  View view() {
+    return View{n_,
+                logical(status.view()),
+                logical(shape.view()),
+                logical(shape_param.view()),
+                logical(inv_mass.view()),
+                logical(inertia.view()),
+                logical(inv_inertia_body.view()),
+                logical(inv_inertia.view()),
+                logical(pos.view()),
+                logical(q.view()),
+                logical(R.view()),
+                logical(v.view()),
+                logical(w.view()),
+                logical(force.view()),
+                logical(torque.view()),
+                logical(radius.view()),
+                logical(aabb.view()),
+                logical(motion.view())};
   }
 
  private:
+  template <class V>
+  V logical(V v) const {
+    if constexpr (std::is_same_v<V, VecD2View>)
+      v.nx = n_;
+    else
+      v.n = n_;
+    return v;
+  }
+
   std::size_t n_ = 0;
+  std::size_t capacity_ = 0;
 };
+
+// Calls f(field of a, same field of b, rows, per_step) for every field of two
+// stores (possibly the same one, possibly on different backends). per_step marks
+// what changes every time step (thesis 5.1.2): state, forces and what is derived
+// from position and orientation; the rest (shape, mass, inertia) is set once.
+template <class A, class B, class F>
+void zip_fields(A& a, B& b, F&& f) {
+  f(a.status, b.status, 1, true);
+  f(a.shape, b.shape, 1, false);
+  f(a.shape_param, b.shape_param, shape_param_rows, false);
+  f(a.inv_mass, b.inv_mass, 1, false);
+  f(a.inertia, b.inertia, 9, false);
+  f(a.inv_inertia_body, b.inv_inertia_body, 9, false);
+  f(a.inv_inertia, b.inv_inertia, 9, true);
+  f(a.pos, b.pos, 3, true);
+  f(a.q, b.q, 4, true);
+  f(a.R, b.R, 9, true);
+  f(a.v, b.v, 3, true);
+  f(a.w, b.w, 3, true);
+  f(a.force, b.force, 3, true);
+  f(a.torque, b.torque, 3, true);
+  f(a.radius, b.radius, 1, false);
+  f(a.aabb, b.aabb, 6, true);
+  f(a.motion, b.motion, 1, true);
+}
 
 }  // namespace gpusolve::rbd
