@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# The whole GPU check in one command, for a machine with a CUDA GPU: builds the
+# sm_90 preset, runs ctest (host and GPU suites, consumers, audit), then the GPU
+# suite under compute-sanitizer memcheck. Logs go to $OUT (or ./out/gpu).
+# API errors are not reported by the sanitizer because the error-path tests
+# provoke them on purpose; memory errors are.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+out="${OUT:-out/gpu}"; mkdir -p "$out"
+extra=()
+[ -n "${GPUSOLVE_CATCH2_INCLUDE_DIR:-}" ] && extra+=("-DGPUSOLVE_CATCH2_INCLUDE_DIR=$GPUSOLVE_CATCH2_INCLUDE_DIR")
+nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$out/gpu.txt"
+cmake --preset gpu "${extra[@]}" > "$out/configure.log" 2>&1 || { tail -30 "$out/configure.log"; exit 1; }
+cmake --build --preset gpu -j "$(nproc)" > "$out/build.log" 2>&1 || { grep -E "error|Error" "$out/build.log" | head -40; exit 1; }
+ctest --preset gpu 2>&1 | tee "$out/ctest.log" | tail -15
+rc=${PIPESTATUS[0]}
+compute-sanitizer --tool memcheck --report-api-errors no --error-exitcode 9 \
+  build/gpu/tests/gpusolve_gpu_tests > "$out/memcheck.log" 2>&1
+src=$?
+tail -4 "$out/memcheck.log"
+echo "ctest rc=$rc memcheck rc=$src"
+[ "$rc" -eq 0 ] && [ "$src" -eq 0 ]
