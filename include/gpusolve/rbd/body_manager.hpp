@@ -1,0 +1,180 @@
+// BodyManager: keeps a device copy of a host BodySet in sync (thesis 5.1.2).
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <sstream>
+#include <vector>
+
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/core/device.hpp"
+#include "gpusolve/core/error.hpp"
+#include "gpusolve/memory/copy.hpp"
+#include "gpusolve/rbd/bodies.hpp"
+#include "gpusolve/rbd/body_set.hpp"
+#include "gpusolve/rbd/integrate.hpp"
+
+namespace gpusolve::rbd {
+
+// What one synchronisation to the device did.
+struct SyncReport {
+  std::size_t bodies = 0;     // bodies on the device afterwards
+  std::size_t full_from = 0;  // every field of bodies [full_from, bodies) was copied
+  bool rebuilt = false;       // removed bodies were compacted away (indices changed)
+};
+
+// For users whose engine keeps its bodies on the host, in a BodySet. Changes
+// announced by bodyAdded/bodyRemoved are applied lazily, at the next sync.
+// Removed bodies are only marked status = removed until `rebuild_threshold` of
+// them have accumulated; then the BodySet is compacted (later bodies move down,
+// keeping their order) and everything is copied again. Bodies in front of the
+// first added one keep their shape and mass data on the device.
+// Device may be device::cpu, which makes the device copy a second host copy.
+template <class Device, class T = float>
+class BodyManager {
+ public:
+  explicit BodyManager(BodySet<T>& host, std::size_t rebuild_threshold = 256)
+      : host_(host), threshold_(rebuild_threshold > 0 ? rebuild_threshold : 1) {}
+
+  // Body `index` of the BodySet is new (or was replaced): copy all of it next sync.
+  void bodyAdded(std::size_t index) { added_.push_back(index); }
+  // Body `index` of the BodySet is gone: marked removed at the next sync.
+  void bodyRemoved(std::size_t index) { removed_.push_back(index); }
+
+  // Applies pending additions and removals, then copies the per-step fields
+  // (status, position, orientation, velocities, forces, torques and what
+  // derives from them) of every body, and all fields of added bodies.
+  SyncReport syncDevice(stream_t stream = stream_t{}) { return sync(false, stream); }
+  // Same, but copies every field of every body.
+  SyncReport syncDeviceFull(stream_t stream = stream_t{}) { return sync(true, stream); }
+
+  // Copies the device's per-step state back into the BodySet records
+  // (position, orientation, velocities, forces, torques, motion). Synchronous.
+  void syncHost(stream_t stream = stream_t{}) {
+    const std::size_t n = device_.size();
+    if (n != host_.size())
+      throw SizeMismatchError("gpusolve: BodyManager::syncHost: the BodySet changed size since the "
+                              "last syncDevice; announce changes with bodyAdded/bodyRemoved and sync");
+    copy_fields(staging_, device_, 0, n, true, stream);
+    for (std::size_t i = 0; i < n; ++i) unpack(i);
+  }
+
+  Bodies<Device, T>& device() { return device_; }
+  const BodySet<T>& host() const { return host_; }
+  std::size_t rebuild_threshold() const { return threshold_; }
+  std::size_t removed_count() const { return removed_count_; }
+
+ private:
+  SyncReport sync(bool full, stream_t stream) {
+    auto& recs = host_.records();
+    SyncReport rep;
+    for (std::size_t i : removed_) {
+      check_index(i, "bodyRemoved");
+      if (recs[i].status != removed) ++removed_count_;
+      recs[i].status = removed;
+    }
+    std::size_t first = full ? 0 : device_.size();  // bodies past the old end are new
+    for (std::size_t i : added_) first = std::min(first, check_index(i, "bodyAdded"));
+    added_.clear();
+    removed_.clear();
+    if (removed_count_ >= threshold_) {
+      recs.erase(std::remove_if(recs.begin(), recs.end(), [](const Body<T>& b) { return b.status == removed; }),
+                 recs.end());
+      removed_count_ = 0;
+      rep.rebuilt = true;
+      first = 0;
+    }
+    const std::size_t n = recs.size();
+    for (std::size_t i = 0; i < n; ++i)
+      if (recs[i].status != removed) validate_body(recs[i], i);
+    // Growth reallocates (contents lost), so double to keep appends amortised.
+    if (n > device_.capacity()) {
+      const std::size_t cap = std::max(n, 2 * device_.capacity());
+      device_.resize(cap);
+      staging_.resize(cap);
+      first = 0;
+    }
+    device_.resize(n);
+    staging_.resize(n);
+    first = std::min(first, n);
+    for (std::size_t i = 0; i < n; ++i) pack(i, i >= first);
+    update_derived(device::cpu{}, staging_.view(), 0, n);
+    copy_fields(device_, staging_, 0, first, false, stream);
+    copy_fields(device_, staging_, first, n, true, stream);
+    rep.bodies = n;
+    rep.full_from = first;
+    return rep;
+  }
+
+  std::size_t check_index(std::size_t i, const char* who) const {
+    if (i >= host_.size()) {
+      std::ostringstream os;
+      os << "gpusolve: BodyManager::" << who << "(" << i << "): the BodySet has " << host_.size()
+         << " bodies";
+      throw InvalidArgumentError(os.str());
+    }
+    return i;
+  }
+
+  // Copies bodies [b, e) of the per-step fields, or of all fields if `all`.
+  template <class Dst, class Src>
+  static void copy_fields(Dst& dst, Src& src, std::size_t b, std::size_t e, bool all, stream_t stream) {
+    if (b >= e) return;
+    zip_fields(dst, src, [&](auto& d, auto& s, std::size_t rows, bool per_step) {
+      if (!all && !per_step) return;
+      using E = typename std::remove_reference_t<decltype(d)>::value_type;
+      using To = typename std::remove_reference_t<decltype(d)>::memory_kind;
+      using From = typename std::remove_reference_t<decltype(s)>::memory_kind;
+      memory::copy_rows<To, From>(d.data() + b, d.pitch() * sizeof(E), s.data() + b,
+                                  s.pitch() * sizeof(E), (e - b) * sizeof(E), rows, false, stream);
+    });
+  }
+
+  // Writes record i into the staging store: per-step fields, and all if `all`.
+  void pack(std::size_t i, bool all) {
+    const Body<T>& r = host_[i];
+    auto& s = staging_;
+    s.status(i) = r.status;
+    for (std::size_t c = 0; c < 3; ++c) {
+      s.pos(i, c) = r.pos[c];
+      s.v(i, c) = r.v[c];
+      s.w(i, c) = r.w[c];
+      s.force(i, c) = r.force[c];
+      s.torque(i, c) = r.torque[c];
+    }
+    for (std::size_t c = 0; c < 4; ++c) s.q(i, c) = r.q[c];
+    s.motion(i) = r.motion;
+    // Shape and mass are needed by update_derived even when not copied.
+    s.shape(i) = r.shape;
+    for (std::size_t c = 0; c < shape_param_rows; ++c) s.shape_param(i, c) = r.shape_param[c];
+    if (!all) return;
+    s.inv_mass(i) = r.inv_mass;
+    for (std::size_t c = 0; c < 9; ++c) {
+      s.inertia(i, c) = r.inertia[c];
+      s.inv_inertia_body(i, c) = r.inv_inertia_body[c];
+    }
+  }
+
+  void unpack(std::size_t i) {
+    Body<T>& r = host_[i];
+    const auto& s = staging_;
+    for (std::size_t c = 0; c < 3; ++c) {
+      r.pos[c] = s.pos(i, c);
+      r.v[c] = s.v(i, c);
+      r.w[c] = s.w(i, c);
+      r.force[c] = s.force(i, c);
+      r.torque[c] = s.torque(i, c);
+    }
+    for (std::size_t c = 0; c < 4; ++c) r.q[c] = s.q(i, c);
+    r.motion = s.motion(i);
+  }
+
+  BodySet<T>& host_;
+  std::size_t threshold_;
+  std::size_t removed_count_ = 0;
+  std::vector<std::size_t> added_, removed_;
+  Bodies<device::cpu, T> staging_;
+  Bodies<Device, T> device_;
+};
+
+}  // namespace gpusolve::rbd
