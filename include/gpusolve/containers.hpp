@@ -11,6 +11,7 @@
 #include "gpusolve/container/vector_view.hpp"
 #include "gpusolve/memory/allocator.hpp"
 #include "gpusolve/memory/buffer.hpp"
+#include "gpusolve/memory/constant_device_memory.hpp"
 #include "gpusolve/memory/copy.hpp"
 #include "gpusolve/memory/cuda_device_allocator.hpp"
 #include "gpusolve/memory/cuda_host_allocator.hpp"
@@ -19,4 +20,5 @@
 #include "gpusolve/memory/standard_allocator.hpp"
 #include "gpusolve/policy/compiletime.hpp"
 #include "gpusolve/policy/runtime.hpp"
+#include "gpusolve/policy/runtime_launch.hpp"
 #include "gpusolve/policy/runtime_stopwatch.hpp"

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "gpusolve/container/parameters.hpp"
 #include "gpusolve/core/config.hpp"
@@ -134,8 +135,15 @@ class VectorStorage {
     copy_containers(*this, o, false, stream_t{});
     return *this;
   }
-  VectorStorage(VectorStorage&&) noexcept = default;
-  VectorStorage& operator=(VectorStorage&&) noexcept = default;
+  // Moves take the allocation; the source is left empty.
+  VectorStorage(VectorStorage&& o) noexcept
+      : buf_(std::move(o.buf_)), n_(std::exchange(o.n_, no_extents)), p_(std::exchange(o.p_, no_extents)) {}
+  VectorStorage& operator=(VectorStorage&& o) noexcept {
+    buf_ = std::move(o.buf_);
+    n_ = std::exchange(o.n_, no_extents);
+    p_ = std::exchange(o.p_, no_extents);
+    return *this;
+  }
   ~VectorStorage() = default;
 
   // Reallocates for logical extents n; the contents are lost (all zero after).
@@ -188,9 +196,12 @@ class VectorStorage {
   }
 #endif
 
+  // Unused dimensions stay 1 so that size() is the product of all three.
+  static constexpr extents3 no_extents{0, Rank > 1 ? 0 : 1, Rank > 2 ? 0 : 1};
+
   memory::Buffer<T, allocator_type> buf_;
-  extents3 n_{0, Rank > 1 ? 0 : 1, Rank > 2 ? 0 : 1};
-  extents3 p_{0, Rank > 1 ? 0 : 1, Rank > 2 ? 0 : 1};
+  extents3 n_ = no_extents;
+  extents3 p_ = no_extents;
 };
 
 }  // namespace detail
