@@ -19,6 +19,13 @@ if [ ${#need[@]} -gt 0 ]; then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${need[@]}"
 fi
+# cuobjdump and nvdisasm (the SASS audit) are not part of every toolkit install;
+# NVIDIA publishes them on PyPI. tools/audit.py finds them on this python's path.
+if ! command -v cuobjdump >/dev/null 2>&1 && ! python3 -c "import nvidia.cuda_cuobjdump" >/dev/null 2>&1; then
+  echo "install_deps: installing cuobjdump and nvdisasm from PyPI"
+  python3 -m pip install --quiet --disable-pip-version-check \
+    nvidia-cuda-cuobjdump==13.2.86 nvidia-cuda-nvdisasm==13.2.86
+fi
 if ! command -v nvcc >/dev/null 2>&1 && [ -x /usr/local/cuda/bin/nvcc ]; then
   echo "install_deps: nvcc is at /usr/local/cuda/bin; add it to PATH to build the CUDA targets"
 fi
