@@ -21,7 +21,7 @@ if [ ${#need[@]} -gt 0 ]; then
 fi
 # cuobjdump and nvdisasm (the SASS audit) are not part of every toolkit install;
 # NVIDIA publishes them on PyPI. tools/audit.py finds them on this python's path.
-if ! command -v cuobjdump >/dev/null 2>&1 && ! python3 -c "import nvidia.cuda_cuobjdump" >/dev/null 2>&1; then
+if ! python3 -c "import sys; sys.path.insert(0, 'tools'); import audit; sys.exit(not audit.find_tool('cuobjdump'))"; then
   echo "install_deps: installing cuobjdump and nvdisasm from PyPI"
   python3 -m pip install --quiet --disable-pip-version-check \
     nvidia-cuda-cuobjdump==13.2.86 nvidia-cuda-nvdisasm==13.2.86
