@@ -1,0 +1,52 @@
+// The Thrust execution policy and scalar read-back of each backend, for the
+// sort/scan/search steps of collision detection.
+#pragma once
+
+// thrust::host algorithms compile with a plain C++ compiler (g++ with the CCCL
+// include directory) as they are; only thrust::device / thrust::cuda need nvcc,
+// so they are named under GPUSOLVE_HAS_NVCC alone.
+#include <thrust/execution_policy.h>
+
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/core/device.hpp"
+#include "gpusolve/core/error.hpp"
+
+#include <cstddef>
+#include <type_traits>
+
+#if GPUSOLVE_HAS_NVCC
+#include <thrust/system/cuda/execution_policy.h>
+#endif
+
+namespace gpusolve::rbd::detail {
+
+inline auto thrust_policy(device::cpu, stream_t) { return thrust::host; }
+
+#if GPUSOLVE_HAS_NVCC
+inline auto thrust_policy(device::gpu, stream_t stream) { return thrust::cuda::par.on(stream); }
+#else
+// Keeps device::gpu code compiling in host translation units; running it needs nvcc.
+[[noreturn]] inline decltype(thrust::host) thrust_policy(device::gpu, stream_t) {
+  throw UnsupportedError("gpusolve: collision detection on device::gpu needs this translation unit compiled by nvcc");
+}
+#endif
+
+// Reads element `index` of memory owned by Device, after the stream's work.
+template <class Device, class U>
+U read_back(const U* p, std::size_t index, stream_t stream) {
+  U value{};
+  if constexpr (std::is_same_v<Device, device::cpu>) {
+    (void)stream;
+    value = p[index];
+  } else {
+#if GPUSOLVE_HAS_CUDART
+    GPUSOLVE_CUDA_CHECK(cudaMemcpyAsync(&value, p + index, sizeof(U), cudaMemcpyDeviceToHost, stream));
+    GPUSOLVE_CUDA_CHECK(cudaStreamSynchronize(stream));
+#else
+    throw UnsupportedError("gpusolve: reading device memory needs the CUDA runtime");
+#endif
+  }
+  return value;
+}
+
+}  // namespace gpusolve::rbd::detail
