@@ -8,6 +8,7 @@
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/container/vector_d2_offset.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/rbd/shapes.hpp"
@@ -134,6 +135,16 @@ struct Bodies {
 
   std::size_t n_ = 0;
   std::size_t capacity_ = 0;
+};
+
+// The row offsets of one Bodies store (all its VectorD2 fields share a pitch).
+template <class T>
+struct BodyOffsets {
+  VectorD2Offset<3> v3;
+  VectorD2Offset<4> q4;
+  VectorD2Offset<9> m9;
+  template <class View>
+  GPUSOLVE_HD explicit BodyOffsets(const View& b) : v3(b.pos.pitch), q4(b.q.pitch), m9(b.R.pitch) {}
 };
 
 // Calls f(field of a, same field of b, rows, per_step) for every field of two

@@ -13,16 +13,6 @@
 
 namespace gpusolve::rbd {
 
-// The row offsets of one Bodies store (all its VectorD2 fields share a pitch).
-template <class T>
-struct BodyOffsets {
-  VectorD2Offset<3> v3;
-  VectorD2Offset<4> q4;
-  VectorD2Offset<9> m9;
-  template <class View>
-  GPUSOLVE_HD explicit BodyOffsets(const View& b) : v3(b.pos.pitch), q4(b.q.pitch), m9(b.R.pitch) {}
-};
-
 // Semi-implicit Euler, linear part (thesis MoveLinearKernel):
 // v += dt (f / m + g), then x += dt v; the force is consumed.
 template <class View, class T>
