@@ -1,0 +1,185 @@
+// Accumulation strategies: how the velocity updates of all contacts reach their
+// bodies in one Jacobi iteration (thesis 5.2 and today's alternatives).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include <cuda/atomic>
+
+#include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/core/launch.hpp"
+#include "gpusolve/math.hpp"
+#include "gpusolve/rbd/contact_grouping.hpp"
+#include "gpusolve/rbd/contact_kernels.hpp"
+
+namespace gpusolve::rbd {
+
+// Strategy tags, the World's Accumulation parameter:
+//  - UpdateCache: the thesis's update cache, one slot per contact side grouped by
+//    body, summed by ceil(log2 c_max) log-step segmented reduction passes (Listing 12).
+//  - Atomic: every contact adds into a per-body accumulator with atomics; order
+//    of addition, hence the last bits, vary from run to run on the GPU.
+//  - Gather: the update cache summed per body over its segment, one thread per
+//    body, in a fixed order: deterministic, one pass, no atomics.
+struct UpdateCache {};
+struct Atomic {};
+struct Gather {};
+
+// Accumulator<Strategy, Device, T>: prepare() once per step after the contacts
+// are known, sink() for ResolveCollisions (add(entry, body, dv, dw)), apply()
+// adds the iteration's sums to the body velocities (UpdateVelocities) and
+// leaves the accumulator ready for the next iteration.
+template <class Strategy, class Device, class T>
+class Accumulator;
+
+namespace detail {
+
+template <class Device, class T>
+using Vec3Store = VectorD2<T, device_is<Device>>;
+
+// Resizes an n x 3 store when it is too small; returns whether it did (zeroed then).
+template <class S>
+bool grow3(S& s, std::size_t n) {
+  if (s.size_x() >= n && s.size_y() == 3) return false;
+  s.resize(n, 3);
+  return true;
+}
+
+template <class T>
+struct CacheSink {
+  VectorD2View<T> dv, dw;
+  VectorD1View<std::uint32_t> slot;
+  GPUSOLVE_HD void add(std::size_t entry, std::uint32_t, const math::Vector3<T>& v, const math::Vector3<T>& w) const {
+    const std::uint32_t p = slot[entry];
+    for (std::size_t k = 0; k < 3; ++k) dv(p, k) = v[k], dw(p, k) = w[k];
+  }
+};
+
+// One pass of Listing 12 at offset o = 2^(s-1): a sorted position whose rank has
+// o as its lowest set bit adds itself into position - o. Ranks stay untouched
+// (the thesis zeroed them, which forced a reset every iteration).
+template <class T>
+struct ReduceVelocityUpdates {
+  VectorD2View<T> dv, dw;
+  VectorD1View<std::uint32_t> rank;
+  std::uint32_t o;
+  GPUSOLVE_HD void operator()(std::size_t p) const {
+    const std::uint32_t r = rank[p];
+    if ((r & o) == 0 || (r & (o - 1)) != 0) return;
+    for (std::size_t k = 0; k < 3; ++k) dv(p - o, k) += dv(p, k), dw(p - o, k) += dw(p, k);
+  }
+};
+
+// UpdateVelocities after the cache was reduced (Sum = false: the segment's first
+// position holds the total) or summing the segment here (Sum = true: Gather).
+template <class BV, class T, bool Sum>
+struct CacheToBodies {
+  BV b;
+  VectorD2View<T> dv, dw;
+  VectorD1View<std::uint32_t> start;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    const std::uint32_t first = start[k], end = start[k + 1];
+    const std::uint32_t last = (Sum || end == first) ? end : first + 1;
+    for (std::size_t c = 0; c < 3; ++c) {
+      T sv = 0, sw = 0;
+      for (std::uint32_t p = first; p < last; ++p) sv += dv(p, c), sw += dw(p, c);
+      b.v(k, c) += sv;
+      b.w(k, c) += sw;
+    }
+  }
+};
+
+template <class T>
+struct AtomicSink {
+  VectorD2View<T> dv, dw;  // bodies x 3
+  GPUSOLVE_HD void add(std::size_t, std::uint32_t body, const math::Vector3<T>& v, const math::Vector3<T>& w) const {
+    for (std::size_t k = 0; k < 3; ++k) {
+      cuda::atomic_ref<T, cuda::thread_scope_device>(dv(body, k)).fetch_add(v[k], cuda::std::memory_order_relaxed);
+      cuda::atomic_ref<T, cuda::thread_scope_device>(dw(body, k)).fetch_add(w[k], cuda::std::memory_order_relaxed);
+    }
+  }
+};
+
+template <class BV, class T>
+struct AtomicToBodies {
+  BV b;
+  VectorD2View<T> dv, dw;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    for (std::size_t c = 0; c < 3; ++c) {
+      b.v(k, c) += dv(k, c), b.w(k, c) += dw(k, c);
+      dv(k, c) = 0, dw(k, c) = 0;
+    }
+  }
+};
+
+// The update cache shared by UpdateCache and Gather: one slot per contact side.
+template <class Device, class T>
+class CacheStore {
+ public:
+  template <class BV, class CV>
+  void prepare(const BV& b, const CV& c, stream_t stream) {
+    grouping_.build(b, c, stream);
+    grow3(dv_, 2 * c.size());
+    grow3(dw_, 2 * c.size());
+    entries_ = 2 * c.size();
+  }
+  CacheSink<T> sink() { return CacheSink<T>{dv_.view(), dw_.view(), grouping_.view().slot}; }
+  std::size_t passes() const { return grouping_.passes(); }
+
+ protected:
+  template <bool Sum, class BV>
+  void to_bodies(const BV& b, stream_t stream) {
+    launch(Device{}, b.size(), CacheToBodies<BV, T, Sum>{b, dv_.view(), dw_.view(), grouping_.view().start}, stream);
+  }
+  ContactGrouping<Device> grouping_;
+  Vec3Store<Device, T> dv_, dw_;
+  std::size_t entries_ = 0;
+};
+
+}  // namespace detail
+
+template <class Device, class T>
+class Accumulator<UpdateCache, Device, T> : public detail::CacheStore<Device, T> {
+ public:
+  template <class BV>
+  void apply(const BV& b, stream_t stream = stream_t{}) {
+    const auto rank = this->grouping_.view().rank;
+    for (std::size_t s = 1; s <= this->passes(); ++s)
+      launch(Device{}, this->entries_,
+             detail::ReduceVelocityUpdates<T>{this->dv_.view(), this->dw_.view(), rank, std::uint32_t(1) << (s - 1)},
+             stream);
+    this->template to_bodies<false>(b, stream);
+  }
+};
+
+template <class Device, class T>
+class Accumulator<Gather, Device, T> : public detail::CacheStore<Device, T> {
+ public:
+  template <class BV>
+  void apply(const BV& b, stream_t stream = stream_t{}) {
+    this->template to_bodies<true>(b, stream);
+  }
+};
+
+template <class Device, class T>
+class Accumulator<Atomic, Device, T> {
+ public:
+  template <class BV, class CV>
+  void prepare(const BV& b, const CV&, stream_t stream = stream_t{}) {
+    if (!detail::grow3(dv_, b.size())) dv_.fill(T(0), stream);  // a new store is zero already
+    if (!detail::grow3(dw_, b.size())) dw_.fill(T(0), stream);
+  }
+  detail::AtomicSink<T> sink() { return detail::AtomicSink<T>{dv_.view(), dw_.view()}; }
+  template <class BV>
+  void apply(const BV& b, stream_t stream = stream_t{}) {
+    launch(Device{}, b.size(), detail::AtomicToBodies<BV, T>{b, dv_.view(), dw_.view()}, stream);
+  }
+  std::size_t passes() const { return 0; }
+
+ private:
+  detail::Vec3Store<Device, T> dv_, dw_;
+};
+
+}  // namespace gpusolve::rbd

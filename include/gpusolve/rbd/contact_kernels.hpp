@@ -1,0 +1,170 @@
+// The per-contact work shared by the Jacobi solver and the Gauss-Seidel reference:
+// inverse diagonal blocks, the next gap/velocity error (CalcNextPhi), the projected
+// block update (ResolveCollisions) and the LCP residual.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/math.hpp"
+
+namespace gpusolve::rbd {
+
+namespace detail {
+
+template <class T, class V>
+GPUSOLVE_HD math::Vector3<T> load3(const V& v, std::size_t i) {
+  return math::Vector3<T>(v(i, 0), v(i, 1), v(i, 2));
+}
+template <class T, class V>
+GPUSOLVE_HD math::Matrix3x3<T> load9(const V& v, std::size_t i) {
+  return math::Matrix3x3<T>(v(i, 0), v(i, 1), v(i, 2), v(i, 3), v(i, 4), v(i, 5), v(i, 6), v(i, 7),
+                            v(i, 8));
+}
+
+// The contact frame: row 0 is n, rows 1 and 2 (models with friction) t and o.
+template <class T, class Model, class CV>
+struct Frame {
+  math::Vector3<T> q[Model::rows];
+  GPUSOLVE_HD Frame(const CV& c, std::size_t i) {
+    q[0] = load3<T>(c.n, i);
+    if constexpr (Model::rows == 3) {
+      q[1] = load3<T>(c.t, i);
+      q[2] = load3<T>(c.o, i);
+    }
+  }
+  // Q x: the impulse in world coordinates.
+  GPUSOLVE_HD math::Vector3<T> world(const T* x) const {
+    math::Vector3<T> p = q[0] * x[0];
+    for (std::size_t r = 1; r < Model::rows; ++r) p += q[r] * x[r];
+    return p;
+  }
+};
+
+// Velocity of the material point at offset r: v + w x r.
+template <class T>
+GPUSOLVE_HD math::Vector3<T> point_velocity(const math::Vector3<T>& v, const math::Vector3<T>& w,
+                                            const math::Vector3<T>& r) {
+  return v + w % r;
+}
+
+}  // namespace detail
+
+// The contact's own diagonal block W = Q^T (K_a + K_b) Q with, per body,
+// K p = m^-1 p + (I^-1 (r x p)) x r  (= (m^-1 E - r× I^-1 r×) p), projected to
+// the model's rows and inverted into dinv. Fixed bodies contribute nothing
+// (zero inverse mass and inertia). Run once per step, after collision detection.
+template <class Model, class BV, class CV, class T>
+struct InverseBlocks {
+  BV b;
+  CV c;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    constexpr std::size_t R = Model::rows;
+    const detail::Frame<T, Model, CV> f(c, i);
+    const std::uint32_t ids[2] = {c.a[i], c.b[i]};
+    const math::Vector3<T> rs[2] = {detail::load3<T>(c.ra, i), detail::load3<T>(c.rb, i)};
+    T W[R][R] = {};
+    for (int s = 0; s < 2; ++s) {
+      const std::uint32_t k = ids[s];
+      const T im = b.inv_mass[k];
+      const math::Matrix3x3<T> Iinv = detail::load9<T>(b.inv_inertia, k);
+      for (std::size_t col = 0; col < R; ++col) {
+        const math::Vector3<T> Kq = im * f.q[col] + (Iinv * (rs[s] % f.q[col])) % rs[s];
+        for (std::size_t row = 0; row < R; ++row) W[row][col] += math::dot(f.q[row], Kq);
+      }
+    }
+    if constexpr (R == 1) {
+      c.dinv(i, 0) = T(1) / W[0][0];
+    } else {
+      const math::Matrix3x3<T> inv = math::inverse_spd(
+          math::Matrix3x3<T>(W[0][0], W[0][1], W[0][2], W[1][0], W[1][1], W[1][2], W[2][0], W[2][1], W[2][2]));
+      for (std::size_t k = 0; k < 9; ++k) c.dinv(i, k) = inv[k];
+    }
+  }
+};
+
+// CalcNextPhi (thesis Algorithm 1): the contact-space error of the current
+// velocities, rhs = Q^T (va + wa x ra - vb - wb x rb) + (phi0 / dt, 0, 0).
+// The normal row asks for a gap rate of at least -phi0/dt: a contact still
+// open by phi0 may close within the step but no further (it is not pushed
+// apart early), and a penetration is corrected within one step.
+template <class Model, class BV, class CV, class T>
+struct CalcNextPhi {
+  BV b;
+  CV c;
+  VectorD2View<T> rhs;  // n x rows
+  T inv_dt;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    const detail::Frame<T, Model, CV> f(c, i);
+    const std::uint32_t ia = c.a[i], ib = c.b[i];
+    const math::Vector3<T> du =
+        detail::point_velocity(detail::load3<T>(b.v, ia), detail::load3<T>(b.w, ia), detail::load3<T>(c.ra, i)) -
+        detail::point_velocity(detail::load3<T>(b.v, ib), detail::load3<T>(b.w, ib), detail::load3<T>(c.rb, i));
+    for (std::size_t r = 0; r < Model::rows; ++r) rhs(i, r) = math::dot(f.q[r], du);
+    rhs(i, 0) += c.phi0[i] * inv_dt;
+  }
+};
+
+// ResolveCollisions (thesis Algorithm 1): the projected, under-relaxed block
+// update x' = proj(x - omega Dinv rhs), and the body velocity changes it causes,
+// handed to Sink::add(entry, body, dv, dw) for each moving body (entry 2i for
+// body a, 2i + 1 for body b). Sink decides how they reach the bodies.
+//
+// THE LCP RESIDUAL (defined here, once): with measure set, residual[i] is the
+// largest component, in the contact frame, of the change of the relative
+// velocity at contact i caused by contact i's own projected update in this
+// iteration, |Q^T W Q (x' - x)|_inf, in m/s; the solver's residual is its maximum
+// over contacts. It is zero exactly at a fixed point of the projected iteration
+// (a solution of the LCP) and says by how much the next projected step would
+// still change a contact velocity. A NaN or infinite value is stored as +inf,
+// so the maximum reports it.
+template <class Model, class BV, class CV, class Sink, class T>
+struct ResolveCollisions {
+  BV b;
+  CV c;
+  VectorD2View<T> rhs;
+  Sink sink;
+  T omega;
+  bool measure;
+  VectorD1View<T> residual;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    constexpr std::size_t R = Model::rows;
+    const detail::Frame<T, Model, CV> f(c, i);
+    T x[R], dx[R];
+    for (std::size_t r = 0; r < R; ++r) {
+      T s = 0;
+      for (std::size_t k = 0; k < R; ++k) s += c.dinv(i, r * R + k) * rhs(i, k);
+      x[r] = c.x(i, r) - omega * s;
+    }
+    T mu = T(0);
+    if constexpr (Model::friction) mu = c.mu[i];
+    Model::project(x, mu);
+    for (std::size_t r = 0; r < R; ++r) {
+      dx[r] = x[r] - c.x(i, r);
+      c.x(i, r) = x[r];
+    }
+    const math::Vector3<T> p = f.world(dx);
+    const std::uint32_t ia = c.a[i], ib = c.b[i];
+    const math::Vector3<T> ra = detail::load3<T>(c.ra, i), rb = detail::load3<T>(c.rb, i);
+    const math::Vector3<T> dva = b.inv_mass[ia] * p, dwa = detail::load9<T>(b.inv_inertia, ia) * (ra % p);
+    const math::Vector3<T> dvb = -(b.inv_mass[ib] * p), dwb = -(detail::load9<T>(b.inv_inertia, ib) * (rb % p));
+    if (b.moving(ia)) sink.add(2 * i, ia, dva, dwa);
+    if (b.moving(ib)) sink.add(2 * i + 1, ib, dvb, dwb);
+    if (measure) {
+      const math::Vector3<T> du = detail::point_velocity(dva, dwa, ra) - detail::point_velocity(dvb, dwb, rb);
+      T m = 0;
+      bool finite = true;
+      for (std::size_t r = 0; r < R; ++r) {
+        const T e = std::fabs(math::dot(f.q[r], du));
+        finite = finite && e <= std::numeric_limits<T>::max();  // false for NaN and inf
+        m = e > m ? e : m;
+      }
+      residual[i] = finite ? m : std::numeric_limits<T>::infinity();
+    }
+  }
+};
+
+}  // namespace gpusolve::rbd

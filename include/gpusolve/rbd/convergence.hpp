@@ -1,0 +1,90 @@
+// The residual check shared by every solver: the measured LCP residual and
+// ConvergenceMonitor, the stopping and divergence rules fed with it.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "gpusolve/container/vector_view.hpp"
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/rbd/reduce.hpp"
+#include "gpusolve/rbd/solver_settings.hpp"
+#include "gpusolve/rbd/solver_stats.hpp"
+
+namespace gpusolve::rbd {
+
+namespace detail {
+
+template <class T>
+struct ResidualAt {
+  VectorD1View<T> r;
+  GPUSOLVE_HD T operator()(std::size_t i) const { return r[i]; }
+};
+
+// +inf for a body whose velocity is not finite, 0 otherwise: folded into the
+// residual check so that a NaN velocity reads as divergence.
+template <class BV, class T>
+struct VelocityNotFinite {
+  BV b;
+  GPUSOLVE_HD T operator()(std::size_t k) const {
+    for (std::size_t c = 0; c < 3; ++c)
+      if (!(std::fabs(b.v(k, c)) <= std::numeric_limits<T>::max()) ||
+          !(std::fabs(b.w(k, c)) <= std::numeric_limits<T>::max()))
+        return std::numeric_limits<T>::infinity();
+    return T(0);
+  }
+};
+
+// The largest residual of the contacts, +inf when any body velocity is not finite.
+template <class Device, class BV, class T>
+T measured_residual(const BV& b, VectorD1View<T> residual, std::size_t contacts, stream_t stream) {
+  const T r = max_over(Device{}, contacts, ResidualAt<T>{residual}, T(0), stream);
+  return std::fmax(r, max_over(Device{}, b.size(), VelocityNotFinite<BV, T>{b}, T(0), stream));
+}
+
+}  // namespace detail
+
+template <class T>
+class ConvergenceMonitor {
+ public:
+  ConvergenceMonitor(const SolverSettings<T>& s, SolverStats<T>& stats) : s_(s), stats_(stats) {}
+
+  // Whether iteration `it` (1-based) measures the residual: every check_every
+  // iterations and always the last one, so the final residual is known.
+  bool checks(std::size_t it) const { return it % s_.check_every == 0 || it == s_.max_iterations; }
+
+  // Records the residual after iteration `it`; returns true when the solve must stop.
+  // Diverged: the residual is not finite (NaN/inf in impulses or velocities) or it
+  // grew at `divergence_checks` checks in a row. Converged: below the tolerance.
+  bool stop(std::size_t it, T residual) {
+    stats_.iterations = it;
+    stats_.residuals.push_back(residual);
+    stats_.checked_at.push_back(it);
+    if (!(residual <= std::numeric_limits<T>::max())) return finish(SolverStatus::diverged);
+    if (residual < s_.tolerance) return finish(SolverStatus::converged);
+    growing_ = residual > previous_ ? growing_ + 1 : 0;
+    previous_ = residual;
+    if (s_.divergence_checks != 0 && growing_ >= s_.divergence_checks) return finish(SolverStatus::diverged);
+    if (it >= s_.max_iterations) return finish(SolverStatus::max_iterations);
+    return false;
+  }
+
+  // Throws DivergenceError when the solve diverged and the settings ask for it.
+  void raise_if_asked() const {
+    if (stats_.status == SolverStatus::diverged && s_.throw_on_divergence)
+      throw DivergenceError(stats_.iterations, double(stats_.residual()));
+  }
+
+ private:
+  bool finish(SolverStatus st) {
+    stats_.status = st;
+    return true;
+  }
+  const SolverSettings<T>& s_;
+  SolverStats<T>& stats_;
+  T previous_ = std::numeric_limits<T>::infinity();
+  std::size_t growing_ = 0;
+};
+
+}  // namespace gpusolve::rbd

@@ -1,0 +1,75 @@
+// JacobiSolver: the projected, under-relaxed block Jacobi LCP solver of thesis
+// 5.2 (Algorithm 1), run on the backend where bodies and contacts live.
+#pragma once
+
+#include <cstddef>
+
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/core/launch.hpp"
+#include "gpusolve/rbd/accumulation.hpp"
+#include "gpusolve/rbd/bodies.hpp"
+#include "gpusolve/rbd/contact_kernels.hpp"
+#include "gpusolve/rbd/contacts.hpp"
+#include "gpusolve/rbd/convergence.hpp"
+#include "gpusolve/rbd/reduce.hpp"
+#include "gpusolve/rbd/solver_settings.hpp"
+#include "gpusolve/rbd/solver_stats.hpp"
+
+namespace gpusolve::rbd {
+
+// Solves the contact LCP of one time step for the bodies' velocities. On entry
+// the velocities include the step's external forces (v + dt M^-1 f); on exit
+// they are the constrained velocities and contacts.x holds each contact's
+// impulse (normal, t, o), starting from zero. Scratch storage is kept between
+// calls. Strategy: UpdateCache, Atomic or Gather (accumulation.hpp).
+template <class Device, class T, class Model, class Strategy = Gather>
+class JacobiSolver {
+ public:
+  using BodyStore = Bodies<Device, T>;
+  using ContactStore = Contacts<Device, T, Model>;
+  using BV = typename BodyStore::View;
+  using CV = typename ContactStore::View;
+
+  SolverStats<T> solve(BodyStore& bodies, ContactStore& contacts, const SolverSettings<T>& s,
+                       stream_t stream = stream_t{}) {
+    s.validate();
+    SolverStats<T> stats;
+    stats.contacts = contacts.size();
+    const std::size_t nc = contacts.size();
+    if (nc == 0) return stats;  // nothing to solve: converged in zero iterations
+    const Device dev{};
+    const BV b = bodies.view();
+    const CV c = contacts.view();
+    if (rhs_.size_x() < nc) {  // scratch only grows
+      rhs_.resize(nc, Model::rows);
+      residual_.resize(nc);
+    }
+    contacts.x.fill(T(0), stream);
+    launch(dev, nc, InverseBlocks<Model, BV, CV, T>{b, c}, stream);
+    acc_.prepare(b, c, stream);
+    stats.reduction_passes = acc_.passes();
+
+    using Sink = decltype(acc_.sink());
+    ConvergenceMonitor<T> monitor(s, stats);
+    const auto rhs = rhs_.view();
+    const auto residual = residual_.view();
+    for (std::size_t it = 1;; ++it) {
+      launch(dev, nc, CalcNextPhi<Model, BV, CV, T>{b, c, rhs, T(1) / s.dt}, stream);
+      const bool measure = monitor.checks(it);
+      launch(dev, nc, ResolveCollisions<Model, BV, CV, Sink, T>{b, c, rhs, acc_.sink(), s.omega, measure, residual},
+             stream);
+      acc_.apply(b, stream);
+      if (measure && monitor.stop(it, detail::measured_residual<Device>(b, residual, nc, stream))) break;
+    }
+    monitor.raise_if_asked();
+    return stats;
+  }
+
+ private:
+  VectorD2<T, device_is<Device>> rhs_;
+  VectorD1<T, device_is<Device>> residual_;
+  Accumulator<Strategy, Device, T> acc_;
+};
+
+}  // namespace gpusolve::rbd

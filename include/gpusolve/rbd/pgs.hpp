@@ -1,0 +1,71 @@
+// Projected Gauss-Seidel: the sequential reference solver on the host, built from
+// the same per-contact functions and projection as the Jacobi solver.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/core/device.hpp"
+#include "gpusolve/rbd/bodies.hpp"
+#include "gpusolve/rbd/contact_kernels.hpp"
+#include "gpusolve/rbd/contacts.hpp"
+#include "gpusolve/rbd/convergence.hpp"
+#include "gpusolve/rbd/solver_settings.hpp"
+#include "gpusolve/rbd/solver_stats.hpp"
+
+namespace gpusolve::rbd {
+
+namespace detail {
+
+// Applies a contact's velocity change to its body at once: what makes the
+// sweep Gauss-Seidel (each contact sees the updates of the contacts before it).
+template <class BV, class T>
+struct DirectSink {
+  BV b;
+  void add(std::size_t, std::uint32_t body, const math::Vector3<T>& dv, const math::Vector3<T>& dw) const {
+    for (std::size_t k = 0; k < 3; ++k) b.v(body, k) += dv[k], b.w(body, k) += dw[k];
+  }
+};
+
+}  // namespace detail
+
+// Same contract as JacobiSolver::solve; one iteration is one sweep over the
+// contacts in order, and the residual (contact_kernels.hpp) is the largest
+// velocity change of that sweep. Use omega = 1 for plain Gauss-Seidel.
+template <class T, class Model>
+SolverStats<T> solve_gauss_seidel(Bodies<device::cpu, T>& bodies, Contacts<device::cpu, T, Model>& contacts,
+                                  const SolverSettings<T>& s) {
+  using BV = typename Bodies<device::cpu, T>::View;
+  using CV = typename Contacts<device::cpu, T, Model>::View;
+  s.validate();
+  SolverStats<T> stats;
+  const std::size_t nc = contacts.size();
+  stats.contacts = nc;
+  if (nc == 0) return stats;
+  const BV b = bodies.view();
+  const CV c = contacts.view();
+  VectorD2<T, device_is<device::cpu>> rhs(nc, Model::rows);
+  VectorD1<T, device_is<device::cpu>> residual(nc);
+  contacts.x.fill(T(0));
+  const InverseBlocks<Model, BV, CV, T> blocks{b, c};
+  const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs.view(), T(1) / s.dt};
+  ConvergenceMonitor<T> monitor(s, stats);
+  for (std::size_t i = 0; i < nc; ++i) blocks(i);
+  for (std::size_t it = 1;; ++it) {
+    const bool measure = monitor.checks(it);
+    const ResolveCollisions<Model, BV, CV, detail::DirectSink<BV, T>, T> resolve{
+        b, c, rhs.view(), detail::DirectSink<BV, T>{b}, s.omega, measure, residual.view()};
+    for (std::size_t i = 0; i < nc; ++i) {
+      phi(i);
+      resolve(i);
+    }
+    if (!measure) continue;
+    if (monitor.stop(it, detail::measured_residual<device::cpu>(b, residual.view(), nc, stream_t{}))) break;
+  }
+  monitor.raise_if_asked();
+  return stats;
+}
+
+}  // namespace gpusolve::rbd

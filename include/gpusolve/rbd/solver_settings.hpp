@@ -1,0 +1,45 @@
+// SolverSettings: the time step and the Jacobi solver's parameters, validated before use.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <sstream>
+#include <string>
+
+#include "gpusolve/core/error.hpp"
+
+namespace gpusolve::rbd {
+
+template <class T>
+struct SolverSettings {
+  T dt = T(0.0025);            // time step (s)
+  T omega = T(0.5);            // under-relaxation of the Jacobi update, in (0, 2) (thesis: 0.2 to 0.7)
+  T tolerance = T(5e-3);       // stop when the LCP residual (m/s, see contact_kernels.hpp) is below
+  std::size_t max_iterations = 2000;
+  std::size_t check_every = 50;      // iterations between residual checks (thesis: 50)
+  std::size_t divergence_checks = 3; // consecutive growing checks that mean divergence (0: off)
+  T gravity[3] = {T(0), T(0), T(-9.81)};
+  T margin = T(0);             // contacts are kept while the gap is below this (m)
+  T friction = T(0.5);         // friction coefficient of every contact (models with friction)
+  bool throw_on_divergence = false;  // solve() throws DivergenceError instead of reporting it
+
+  // Throws InvalidArgumentError naming the first offending field.
+  void validate() const {
+    auto bad = [](const char* field, const std::string& why) {
+      std::ostringstream os;
+      os << "gpusolve: solver setting `" << field << "` " << why;
+      throw InvalidArgumentError(os.str());
+    };
+    if (!(dt > 0) || !std::isfinite(dt)) bad("dt", "must be positive and finite");
+    if (!(omega > 0 && omega < 2)) bad("omega", "must lie in (0, 2)");
+    if (!(tolerance > 0) || !std::isfinite(tolerance)) bad("tolerance", "must be positive and finite");
+    if (max_iterations == 0) bad("max_iterations", "must be at least 1");
+    if (check_every == 0) bad("check_every", "must be at least 1");
+    for (T g : gravity)
+      if (!std::isfinite(g)) bad("gravity", "must be finite");
+    if (!(margin >= 0) || !std::isfinite(margin)) bad("margin", "must be non-negative and finite");
+    if (!(friction >= 0) || !std::isfinite(friction)) bad("friction", "must be non-negative and finite");
+  }
+};
+
+}  // namespace gpusolve::rbd

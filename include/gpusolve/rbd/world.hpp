@@ -1,0 +1,126 @@
+// World: one rigid-body simulation on one backend: bodies, contacts, settings,
+// and step() = collision detection + contact solve + integration.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <type_traits>
+
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/core/device.hpp"
+#include "gpusolve/core/launch.hpp"
+#include "gpusolve/math.hpp"
+#include "gpusolve/rbd/accuracy.hpp"
+#include "gpusolve/rbd/body_manager.hpp"
+#include "gpusolve/rbd/body_set.hpp"
+#include "gpusolve/rbd/collision_detection.hpp"
+#include "gpusolve/rbd/contact_model.hpp"
+#include "gpusolve/rbd/contacts.hpp"
+#include "gpusolve/rbd/integrate.hpp"
+#include "gpusolve/rbd/jacobi.hpp"
+#include "gpusolve/rbd/solver_settings.hpp"
+#include "gpusolve/rbd/solver_stats.hpp"
+
+namespace gpusolve::rbd {
+
+namespace detail {
+
+// The external part of the step's velocity, v += dt (f/m + g), w += dt I^-1 tau,
+// applied before the solve so that the LCP sees v + dt M^-1 f_ext (thesis Eq. 6);
+// forces and torques are consumed. integrate() then only moves (gravity 0).
+template <class BV, class T>
+struct ApplyExternal {
+  BV b;
+  T dt;
+  math::Vector3<T> g;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    if (!b.moving(k)) return;
+    const math::Vector3<T> dv = dt * (b.inv_mass[k] * load3<T>(b.force, k) + g);
+    const math::Vector3<T> dw = dt * (load9<T>(b.inv_inertia, k) * load3<T>(b.torque, k));
+    for (std::size_t c = 0; c < 3; ++c) {
+      b.v(k, c) += dv[c], b.w(k, c) += dw[c];
+      b.force(k, c) = 0, b.torque(k, c) = 0;
+    }
+  }
+};
+
+// Waits until the backend finished the work queued on `stream` (timing per phase).
+inline void finish(device::cpu, stream_t) {}
+inline void finish(device::gpu, stream_t stream) {
+#if GPUSOLVE_HAS_CUDART
+  GPUSOLVE_CUDA_CHECK(cudaStreamSynchronize(stream));
+#else
+  (void)stream;
+#endif
+}
+
+}  // namespace detail
+
+// The bodies come from a host BodySet through a BodyManager (copied once at
+// construction; later changes are announced to manager()). Everything in step()
+// runs where the bodies live; the host is touched only by syncHost() and the
+// statistics' scalars.
+template <class Device, class T = float, class Model = PyramidFriction, class Strategy = Gather>
+class World {
+ public:
+  World(BodySet<T>& set, const SolverSettings<T>& settings, stream_t stream = stream_t{})
+      : manager_(set), stream_(stream) {
+    set_settings(settings);
+    manager_.syncDeviceFull(stream_);
+  }
+
+  // Throws InvalidArgumentError naming the field before anything changes.
+  void set_settings(const SolverSettings<T>& s) {
+    s.validate();
+    settings_ = s;
+  }
+  const SolverSettings<T>& settings() const { return settings_; }
+
+  StepStats<T> step() {
+    using Clock = std::chrono::steady_clock;
+    auto& bodies = manager_.device();
+    const SolverSettings<T>& s = settings_;
+    const math::Vector3<T> g(s.gravity[0], s.gravity[1], s.gravity[2]);
+    StepStats<T> st;
+
+    const auto t0 = Clock::now();
+    detection_.detect(bodies, contacts_, s.margin, s.friction, stream_);
+    detail::finish(Device{}, stream_);
+    const auto t1 = Clock::now();
+    using BV = typename Bodies<Device, T>::View;
+    const BV b = bodies.view();
+    launch(Device{}, b.size(), detail::ApplyExternal<BV, T>{b, s.dt, g}, stream_);
+    st.solver = solver_.solve(bodies, contacts_, s, stream_);
+    detail::finish(Device{}, stream_);
+    const auto t2 = Clock::now();
+    integrate(bodies, s.dt, math::Vector3<T>(), stream_);
+    detail::finish(Device{}, stream_);
+    const auto t3 = Clock::now();
+
+    st.max_penetration = max_relative_penetration<Device, T>(b, contacts_.view(), stream_);
+    st.kinetic_energy = kinetic_energy<Device, BV, T>(b, stream_);
+    st.potential_energy = potential_energy<Device, BV, T>(b, g, stream_);
+    using Sec = std::chrono::duration<double>;
+    st.time_detection = Sec(t1 - t0).count();
+    st.time_solve = Sec(t2 - t1).count();
+    st.time_integration = Sec(t3 - t2).count();
+    return st;
+  }
+
+  // Copies positions, orientations and velocities back into the BodySet.
+  void syncHost() { manager_.syncHost(stream_); }
+
+  Bodies<Device, T>& bodies() { return manager_.device(); }
+  Contacts<Device, T, Model>& contacts() { return contacts_; }
+  BodyManager<Device, T>& manager() { return manager_; }
+
+ private:
+  BodyManager<Device, T> manager_;
+  stream_t stream_;
+  SolverSettings<T> settings_;
+  CollisionDetection<Device, T> detection_;
+  Contacts<Device, T, Model> contacts_;
+  JacobiSolver<Device, T, Model, Strategy> solver_;
+};
+
+}  // namespace gpusolve::rbd
