@@ -1,0 +1,217 @@
+// Broad phase against brute force, narrow-phase geometry by hand, and the contact list.
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "catch_compat.hpp"
+#include "gpusolve/rbd/body_manager.hpp"
+#include "gpusolve/rbd/collision_detection.hpp"
+#include "test_rbd_collision_scene.hpp"
+
+using namespace gpusolve;
+using namespace gpusolve::rbd;
+using V = math::Vector3<float>;
+using M = math::Matrix3x3<float>;
+
+namespace {
+
+std::vector<std::uint64_t> grid_pairs(BodySet<float>& s, float margin) {
+  BodyManager<device::cpu> m(s);
+  m.syncDevice();
+  UniformGrid<device::cpu> grid;
+  const std::size_t n = grid.find_pairs(m.device(), margin);
+  REQUIRE(n == grid.count());
+  return std::vector<std::uint64_t>(grid.pairs(), grid.pairs() + n);
+}
+
+void require_vec(const V& v, float x, float y, float z, float eps = 1e-5f) {
+  CHECK(v[0] == Approx(x).margin(eps));
+  CHECK(v[1] == Approx(y).margin(eps));
+  CHECK(v[2] == Approx(z).margin(eps));
+}
+
+// The contact point seen from both bodies must be the same point.
+void require_same_point(const ContactGeometry<float>& g, const V& pa, const V& pb) {
+  const V p1 = pa + g.ra, p2 = pb + g.rb;
+  for (int c = 0; c < 3; ++c) CHECK(p1[c] == Approx(p2[c]).margin(1e-5));
+}
+
+}  // namespace
+
+TEST_CASE("uniform grid finds exactly the brute-force sphere pairs", "[rbd][collision]") {
+  for (unsigned seed : {1u, 2u, 3u})
+    for (int n : {1, 2, 60, 700, 2500})
+      for (float margin : {0.f, 0.05f}) {
+        // Dense enough that most spheres have neighbours, sparse enough to spread over many cells.
+        BodySet<float> s = rbd_test::random_cloud(seed, n, 1.2f * std::cbrt(float(n)) + 1.f);
+        const auto expected = rbd_test::brute_force_pairs(s, margin);
+        INFO("seed " << seed << ", n " << n << ", margin " << margin);
+        CHECK(grid_pairs(s, margin) == expected);
+        if (n >= 700) CHECK(expected.size() > std::size_t(n) / 4);  // the cloud really has contacts
+      }
+}
+
+TEST_CASE("uniform grid handles spheres straddling cell boundaries and far from the origin",
+          "[rbd][collision]") {
+  BodySet<float> s;
+  // Cell size is 2 * 0.5 = 1: centres at -0.49 and 0.49 sit in cells -1 and 0 and
+  // touch across the boundary; a chain along a diagonal crosses cells in x, y and z.
+  s.add_sphere({-0.49f, 0.f, 0.f}, 0.5f, 1.f);
+  s.add_sphere({0.49f, 0.f, 0.f}, 0.5f, 1.f);
+  for (int k = 0; k < 6; ++k) s.add_sphere({1000.f + 0.55f * k, -2000.f + 0.55f * k, 0.55f * k}, 0.5f, 1.f);
+  const auto expected = rbd_test::brute_force_pairs(s, 0.f);
+  REQUIRE(expected.size() == 6);  // one boundary pair and five chain links
+  CHECK(grid_pairs(s, 0.f) == expected);
+}
+
+TEST_CASE("sphere resting on a plane: gap 0, normal = plane normal", "[rbd][collision]") {
+  const V n(0.f, 0.6f, 0.8f);  // a tilted unit normal
+  const float d = 2.f;
+  const V pa = (d + 1.5f) * n;  // centre 1.5 above the plane
+  const auto g = sphere_plane(pa, 1.5f, n, d, V(d * n));
+  CHECK(g.gap == Approx(0.f).margin(1e-6));
+  require_vec(g.n, 0.f, 0.6f, 0.8f);
+  require_vec(g.ra, 0.f, -0.9f, -1.2f);  // from the centre down to the plane
+  require_same_point(g, pa, d * n);
+  const auto lifted = sphere_plane(V(pa + 0.25f * n), 1.5f, n, d, V(d * n));
+  CHECK(lifted.gap == Approx(0.25f));
+  const auto sunk = sphere_plane(V(pa - 0.5f * n), 1.5f, n, d, V(d * n));
+  CHECK(sunk.gap == Approx(-0.5f));
+}
+
+TEST_CASE("sphere-sphere geometry", "[rbd][collision]") {
+  const V pa(1.f, 2.f, 3.f), pb(1.f, 2.f + 0.6f, 3.f + 0.8f);  // one unit apart
+  const auto g = sphere_sphere(pa, 0.3f, pb, 0.5f);
+  CHECK(g.gap == Approx(0.2f));
+  require_vec(g.n, 0.f, -0.6f, -0.8f);  // from b to a
+  require_same_point(g, pa, pb);
+  // The contact point lies midway between the two surfaces.
+  require_vec(g.ra, 0.f, 0.6f * 0.4f, 0.8f * 0.4f);
+}
+
+TEST_CASE("sphere-box geometry: face, edge, corner, inside, rotated", "[rbd][collision]") {
+  const V pb(1.f, 1.f, 1.f), h(1.f, 2.f, 3.f);
+  const M I = M::identity();
+  SECTION("face") {
+    const V pa(1.f, 1.f + 2.f + 0.7f, 1.5f);
+    const auto g = sphere_box(pa, 0.5f, pb, I, h);
+    CHECK(g.gap == Approx(0.2f));
+    require_vec(g.n, 0.f, 1.f, 0.f);
+    require_same_point(g, pa, pb);
+  }
+  SECTION("edge") {
+    const float s = 1.f / std::sqrt(2.f);
+    const V pa(1.f + 1.f + s, 1.f + 2.f + s, 1.f);  // 1 from the edge x = 1, y = 2
+    const auto g = sphere_box(pa, 0.25f, pb, I, h);
+    CHECK(g.gap == Approx(0.75f));
+    require_vec(g.n, s, s, 0.f);
+    require_same_point(g, pa, pb);
+  }
+  SECTION("corner") {
+    const float s = 1.f / std::sqrt(3.f);
+    const V pa(1.f - 1.f - 2 * s, 1.f + 2.f + 2 * s, 1.f - 3.f - 2 * s);  // 2 from the corner
+    const auto g = sphere_box(pa, 2.f, pb, I, h);
+    CHECK(g.gap == Approx(0.f).margin(1e-5));
+    require_vec(g.n, -s, s, -s);
+    require_same_point(g, pa, pb);
+  }
+  SECTION("centre inside: pushed out through the nearest face") {
+    const V pa(1.f + 0.8f, 1.f, 1.f);  // 0.2 from the +x face, farther from all others
+    const auto g = sphere_box(pa, 0.5f, pb, I, h);
+    CHECK(g.gap == Approx(-0.7f));
+    require_vec(g.n, 1.f, 0.f, 0.f);
+    require_same_point(g, pa, pb);
+  }
+  SECTION("rotated box") {
+    // 90 degrees about z: the box's x half extent (1) now lies along world y.
+    const M R = math::to_rotation_matrix(math::Quaternion<float>(std::sqrt(0.5f), 0.f, 0.f, std::sqrt(0.5f)));
+    const V pa(1.f, 1.f + 1.f + 0.5f, 1.f);
+    const auto g = sphere_box(pa, 0.25f, pb, R, h);
+    CHECK(g.gap == Approx(0.25f));
+    require_vec(g.n, 0.f, 1.f, 0.f);
+    require_same_point(g, pa, pb);
+  }
+}
+
+TEST_CASE("collision detection: margin, fixed pairs, obstacles, tangents, order", "[rbd][collision]") {
+  BodySet<float> s;
+  s.add_box({0.f, 0.f, -10.f}, {1.f, 1.f, 1.f});      // 0: far below everything
+  s.add_sphere({0.f, 0.f, 3.05f}, 1.f, 1.f);          // 1: 0.05 above sphere 2
+  s.add_sphere({0.f, 0.f, 1.f}, 1.f, 1.f);            // 2: resting on the plane
+  s.add_plane({0.f, 0.f, 1.f}, 0.f);                  // 3
+  s.add_fixed_sphere({5.f, 0.f, 1.f}, 1.f);           // 4: fixed, on the plane, touching 5
+  s.add_fixed_sphere({7.f, 0.f, 1.f}, 1.f);           // 5: fixed
+  s.add_sphere({20.f, 0.f, 1.5f}, 1.f, 1.f);          // 6: 0.5 above the plane: beyond the margin
+  BodyManager<device::cpu> m(s);
+  m.syncDevice();
+  CollisionDetection<device::cpu> cd;
+  Contacts<device::cpu, float, PyramidFriction> c;
+  const std::size_t n = cd.detect(m.device(), c, 0.1f, 0.4f);
+  // (1,2) within the margin, (1,3) is 2.05 above the plane: none; (2,3) touching;
+  // 4 and 5 both fixed: none; 6 too far.
+  REQUIRE(n == 2);
+  REQUIRE(c.size() == 2);
+  CHECK(c.a(0) == 1u);
+  CHECK(c.b(0) == 2u);
+  CHECK(c.phi0(0) == Approx(0.05f));
+  CHECK(c.n(0, 2) == Approx(1.f));
+  CHECK(c.a(1) == 2u);
+  CHECK(c.b(1) == 3u);
+  CHECK(c.phi0(1) == Approx(0.f).margin(1e-6));
+  for (std::size_t k = 0; k < n; ++k) {
+    CHECK(c.mu(k) == Approx(0.4f));
+    float tn = 0, on = 0, to = 0, tt = 0, oo = 0;
+    for (int d = 0; d < 3; ++d) {
+      tn += c.t(k, d) * c.n(k, d), on += c.o(k, d) * c.n(k, d), to += c.t(k, d) * c.o(k, d);
+      tt += c.t(k, d) * c.t(k, d), oo += c.o(k, d) * c.o(k, d);
+    }
+    CHECK(tn == Approx(0.f).margin(1e-6));
+    CHECK(on == Approx(0.f).margin(1e-6));
+    CHECK(to == Approx(0.f).margin(1e-6));
+    CHECK(tt == Approx(1.f));
+    CHECK(oo == Approx(1.f));
+  }
+  CHECK_THROWS_AS(cd.detect(m.device(), c, -1.f), InvalidArgumentError);
+}
+
+TEST_CASE("collision detection on a random cloud matches a brute-force contact search", "[rbd][collision]") {
+  const float margin = 0.02f;
+  BodySet<float> s = rbd_test::random_cloud(7, 1500, 13.f);
+  BodyManager<device::cpu> m(s);
+  m.syncDevice();
+  CollisionDetection<device::cpu> cd;
+  Contacts<device::cpu, float, Frictionless> c;
+  const std::size_t n = cd.detect(m.device(), c, margin);
+  // Expected: sphere pairs with an active partner, and active spheres near an obstacle.
+  std::vector<std::uint64_t> expected;
+  for (std::uint64_t k : rbd_test::brute_force_pairs(s, margin)) {
+    const auto i = std::size_t(k >> 32), j = std::size_t(k & 0xffffffffu);
+    if (s[i].status == active || s[j].status == active) expected.push_back(k);
+  }
+  auto& d = m.device();
+  const BodyOffsets<float> off(d.view());
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i].shape != sphere || s[i].status != active) continue;
+    const V pa(s[i].pos[0], s[i].pos[1], s[i].pos[2]);
+    for (std::size_t j = 0; j < s.size(); ++j) {
+      const auto& o = s[j];
+      const V pb(o.pos[0], o.pos[1], o.pos[2]);
+      float gap = 1e30f;
+      if (o.shape == plane)
+        gap = sphere_plane(pa, s[i].shape_param[0], V(o.shape_param[0], o.shape_param[1], o.shape_param[2]),
+                           o.shape_param[3], pb).gap;
+      if (o.shape == box)
+        gap = sphere_box(pa, s[i].shape_param[0], pb, math::to_rotation_matrix(math::Quaternion<float>(o.q[0], o.q[1], o.q[2], o.q[3])),
+                         V(o.shape_param[0], o.shape_param[1], o.shape_param[2])).gap;
+      if (gap < margin) expected.push_back((std::uint64_t(i) << 32) | j);
+    }
+  }
+  std::sort(expected.begin(), expected.end());
+  REQUIRE(expected.size() > 300);
+  REQUIRE(n == expected.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    INFO("contact " << k);
+    REQUIRE(((std::uint64_t(c.a(k)) << 32) | c.b(k)) == expected[k]);  // also proves the (a, b) order
+    CHECK(c.phi0(k) < margin);
+  }
+}
