@@ -1,0 +1,193 @@
+// BodySet validation (typed errors naming body and field) and BodyManager synchronisation.
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "catch_compat.hpp"
+#include "gpusolve/rbd/body_manager.hpp"
+
+using namespace gpusolve;
+using namespace gpusolve::rbd;
+
+namespace {
+
+const float nan_f = std::numeric_limits<float>::quiet_NaN();
+const float inf_f = std::numeric_limits<float>::infinity();
+
+// Runs f, which must throw InvalidBodyError for `body` and `field`, with both in the message.
+template <class F>
+void require_bad(F&& f, std::size_t body, const std::string& field) {
+  try {
+    f();
+    FAIL("no InvalidBodyError for field " << field);
+  } catch (const InvalidBodyError& e) {
+    CHECK(e.body() == body);
+    CHECK(e.field() == field);
+    const std::string what = e.what();
+    CHECK(what.find("body " + std::to_string(body)) != std::string::npos);
+    CHECK(what.find(field) != std::string::npos);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("BodySet builders derive mass properties", "[rbd][bodies]") {
+  BodySet<float> s;
+  const auto i = s.add_sphere({1.f, 2.f, 3.f}, 0.5f, 4.f);
+  CHECK(s[i].inv_mass == Approx(0.25f));
+  CHECK(s[i].inertia[0] == Approx(0.4f * 4.f * 0.25f));
+  CHECK(s[i].inv_inertia_body[8] == Approx(1.f / (0.4f * 4.f * 0.25f)));
+  CHECK(s[i].inertia[1] == 0.f);
+  const auto p = s.add_plane({0.f, 3.f, 4.f}, 2.f);
+  CHECK(s[p].status == fixed);
+  CHECK(s[p].shape_param[1] == Approx(0.6f));
+  CHECK(s[p].shape_param[2] == Approx(0.8f));
+  CHECK(s[p].pos[2] == Approx(1.6f));
+  const auto b = s.add_box({0.f, 0.f, 0.f}, {1.f, 2.f, 3.f});
+  CHECK(s[b].inv_mass == 0.f);
+  CHECK(s[b].status == fixed);
+}
+
+TEST_CASE("bad body input throws InvalidBodyError naming body and field", "[rbd][bodies]") {
+  BodySet<float> s;
+  s.add_sphere({0.f, 0.f, 0.f}, 1.f, 1.f);  // index 0 is fine; the bad ones would be index 1
+  require_bad([&] { s.add_sphere({0.f, 0.f, 0.f}, 0.f, 1.f); }, 1, "radius");
+  require_bad([&] { s.add_sphere({0.f, 0.f, 0.f}, -1.f, 1.f); }, 1, "radius");
+  require_bad([&] { s.add_sphere({0.f, 0.f, 0.f}, nan_f, 1.f); }, 1, "radius");
+  require_bad([&] { s.add_sphere({0.f, 0.f, 0.f}, 1.f, 0.f); }, 1, "mass");
+  require_bad([&] { s.add_sphere({0.f, 0.f, 0.f}, 1.f, -2.f); }, 1, "mass");
+  require_bad([&] { s.add_sphere({0.f, 0.f, 0.f}, 1.f, inf_f); }, 1, "mass");
+  require_bad([&] { s.add_sphere({0.f, 0.f, 0.f}, 1.f, 1.f, {1.f, -1.f, 1.f}); }, 1, "inertia");
+  require_bad([&] { s.add_sphere({nan_f, 0.f, 0.f}, 1.f, 1.f); }, 1, "pos");
+  require_bad([&] { s.add_box({0.f, 0.f, 0.f}, {1.f, 0.f, 1.f}); }, 1, "half_extents");
+  require_bad([&] { s.add_box({0.f, 0.f, 0.f}, {1.f, 1.f, -1.f}); }, 1, "half_extents");
+  require_bad([&] { s.add_box({0.f, 0.f, 0.f}, {1.f, 1.f, 1.f}, {2.f, 0.f, 0.f, 0.f}); }, 1, "q");
+  require_bad([&] { s.add_plane({0.f, 0.f, 0.f}, 1.f); }, 1, "normal");
+  require_bad([&] { s.add_plane({0.f, nan_f, 1.f}, 1.f); }, 1, "normal");
+  require_bad([&] { s.add_fixed_sphere({0.f, 0.f, 0.f}, 0.f); }, 1, "radius");
+  Body<float> b = s[0];
+  b.v[2] = inf_f;
+  require_bad([&] { s.add(b); }, 1, "v");
+  b = s[0];
+  b.w[0] = nan_f;
+  require_bad([&] { s.add(b); }, 1, "w");
+  b = s[0];
+  b.status = fixed;  // fixed bodies must be massless
+  require_bad([&] { s.add(b); }, 1, "mass");
+  b = s[0];
+  b.shape = box;  // boxes are always fixed
+  b.shape_param = {1.f, 1.f, 1.f, 0.f};
+  require_bad([&] { s.add(b); }, 1, "status");
+  CHECK(s.size() == 1);  // nothing bad was added
+  // State corrupted in place is caught at the next sync.
+  s.add_sphere({0.f, 0.f, 5.f}, 1.f, 1.f);
+  s[1].force[1] = nan_f;
+  BodyManager<device::cpu> m(s);
+  require_bad([&] { m.syncDevice(); }, 1, "force");
+  CHECK(std::is_base_of_v<InvalidArgumentError, InvalidBodyError>);
+}
+
+TEST_CASE("BodyManager copies bodies and derived fields, and brings state back", "[rbd][bodies]") {
+  BodySet<float> s;
+  s.add_sphere({1.f, 2.f, 3.f}, 0.5f, 2.f);
+  s.add_box({0.f, 0.f, 0.f}, {1.f, 2.f, 2.f}, {std::sqrt(0.5f), 0.f, 0.f, std::sqrt(0.5f)});
+  s.add_plane({0.f, 0.f, 1.f}, -1.f);
+  s[0].v = {1.f, 0.f, 0.f};
+  BodyManager<device::cpu> m(s, 2);
+  const SyncReport r = m.syncDevice();
+  CHECK(r.bodies == 3);
+  CHECK(r.full_from == 0);
+  CHECK_FALSE(r.rebuilt);
+  auto& d = m.device();
+  REQUIRE(d.size() == 3);
+  CHECK(d.pos(0, 2) == 3.f);
+  CHECK(d.inv_mass(0) == Approx(0.5f));
+  CHECK(d.radius(0) == 0.5f);
+  CHECK(d.aabb(0, 0) == Approx(0.5f));
+  CHECK(d.aabb(0, 5) == Approx(3.5f));
+  CHECK(d.radius(1) == Approx(3.f));  // |(1, 2, 2)|
+  CHECK(d.R(1, 1) == Approx(-1.f));   // 90 degrees about z: row 0 is (0, -1, 0)
+  CHECK(std::isinf(d.radius(2)));
+  CHECK(d.status(1) == fixed);
+  // The device moves a body; syncHost brings it back into the records.
+  d.pos(0, 0) = 7.f;
+  d.v(0, 1) = -2.f;
+  m.syncHost();
+  CHECK(s[0].pos[0] == 7.f);
+  CHECK(s[0].v[1] == -2.f);
+}
+
+TEST_CASE("BodyManager: lazy add, skipped leading bodies, removal threshold", "[rbd][bodies]") {
+  BodySet<float> s;
+  for (int i = 0; i < 4; ++i) s.add_sphere({float(i), 0.f, 0.f}, 0.25f, 1.f);
+  BodyManager<device::cpu> m(s, 3);
+  m.syncDevice();
+  auto& d = m.device();
+  // A device-only mark in a set-once field shows whether a body was copied again.
+  d.shape_param(0, 1) = 42.f;
+  d.shape_param(3, 1) = 42.f;
+
+  SECTION("appended bodies: only they are copied in full") {
+    m.bodyAdded(s.add_sphere({8.f, 0.f, 0.f}, 0.5f, 1.f));
+    CHECK(m.syncDevice().full_from == 0);  // past the capacity of 4: reallocated, all copied
+    CHECK(d.capacity() >= 6);
+    d.shape_param(0, 1) = 42.f;
+    s.add_sphere({9.f, 0.f, 0.f}, 0.75f, 1.f);
+    m.bodyAdded(5);
+    s[0].force = {0.f, 0.f, 5.f};  // per-step fields of every body are copied
+    const SyncReport r = m.syncDevice();
+    CHECK(r.full_from == 5);
+    CHECK(r.bodies == 6);
+    CHECK(d.shape_param(0, 1) == 42.f);  // leading body skipped
+    CHECK(d.shape_param(5, 0) == 0.75f);
+    CHECK(d.force(0, 2) == 5.f);
+    CHECK(m.syncDeviceFull().full_from == 0);
+    CHECK(d.shape_param(0, 1) == 0.f);  // full sync copies everything
+  }
+  SECTION("a body replaced in the middle is copied from there on") {
+    s[2].shape_param[0] = 0.5f;
+    m.bodyAdded(2);
+    const SyncReport r = m.syncDevice();
+    CHECK(r.full_from == 2);
+    CHECK(d.shape_param(0, 1) == 42.f);
+    CHECK(d.shape_param(3, 1) == 0.f);
+    CHECK(d.radius(2) == 0.5f);
+  }
+  SECTION("growth past the capacity reallocates and copies all") {
+    for (int i = 0; i < 100; ++i) m.bodyAdded(s.add_sphere({0.f, float(i), 5.f}, 0.25f, 1.f));
+    const SyncReport r = m.syncDevice();
+    CHECK(r.full_from == 0);
+    CHECK(r.bodies == 104);
+    CHECK(d.pos(103, 1) == 99.f);
+  }
+  SECTION("removals are marks until the threshold, then a compaction") {
+    m.bodyRemoved(1);
+    m.bodyRemoved(1);  // announcing twice counts once
+    SyncReport r = m.syncDevice();
+    CHECK_FALSE(r.rebuilt);
+    CHECK(r.bodies == 4);
+    CHECK(d.status(1) == removed);
+    CHECK(s[1].status == removed);
+    CHECK(m.removed_count() == 1);
+    m.bodyRemoved(3);
+    r = m.syncDevice();
+    CHECK_FALSE(r.rebuilt);
+    CHECK(m.removed_count() == 2);
+    m.bodyRemoved(0);
+    r = m.syncDevice();
+    CHECK(r.rebuilt);
+    CHECK(r.full_from == 0);
+    REQUIRE(r.bodies == 1);
+    REQUIRE(s.size() == 1);
+    CHECK(s[0].pos[0] == 2.f);  // the survivor, body 2, is now body 0
+    CHECK(d.pos(0, 0) == 2.f);
+    CHECK(d.status(0) == active);
+    CHECK(m.removed_count() == 0);
+  }
+  SECTION("bad indices and unannounced size changes") {
+    m.bodyRemoved(17);
+    CHECK_THROWS_AS(m.syncDevice(), InvalidArgumentError);
+    s.add_sphere({0.f, 0.f, 0.f}, 1.f, 1.f);
+    CHECK_THROWS_AS(m.syncHost(), SizeMismatchError);
+  }
+}
