@@ -55,8 +55,9 @@ class ConvergenceMonitor {
   bool checks(std::size_t it) const { return it % s_.check_every == 0 || it == s_.max_iterations; }
 
   // Records the residual after iteration `it`; returns true when the solve must stop.
-  // Diverged: the residual is not finite (NaN/inf in impulses or velocities) or it
-  // grew at `divergence_checks` checks in a row. Converged: below the tolerance.
+  // Diverged: the residual is not finite (NaN/inf in impulses or velocities), or it
+  // grew at `divergence_checks` checks in a row to `divergence_growth` times its
+  // smallest value so far. Converged: below the tolerance.
   bool stop(std::size_t it, T residual) {
     stats_.iterations = it;
     stats_.residuals.push_back(residual);
@@ -65,7 +66,10 @@ class ConvergenceMonitor {
     if (residual < s_.tolerance) return finish(SolverStatus::converged);
     growing_ = residual > previous_ ? growing_ + 1 : 0;
     previous_ = residual;
-    if (s_.divergence_checks != 0 && growing_ >= s_.divergence_checks) return finish(SolverStatus::diverged);
+    smallest_ = residual < smallest_ ? residual : smallest_;
+    if (s_.divergence_checks != 0 && growing_ >= s_.divergence_checks &&
+        residual > s_.divergence_growth * smallest_)
+      return finish(SolverStatus::diverged);
     if (it >= s_.max_iterations) return finish(SolverStatus::max_iterations);
     return false;
   }
@@ -84,6 +88,7 @@ class ConvergenceMonitor {
   const SolverSettings<T>& s_;
   SolverStats<T>& stats_;
   T previous_ = std::numeric_limits<T>::infinity();
+  T smallest_ = std::numeric_limits<T>::infinity();
   std::size_t growing_ = 0;
 };
 

@@ -17,7 +17,11 @@ struct SolverSettings {
   T tolerance = T(5e-3);       // stop when the LCP residual (m/s, see contact_kernels.hpp) is below
   std::size_t max_iterations = 2000;
   std::size_t check_every = 50;      // iterations between residual checks (thesis: 50)
-  std::size_t divergence_checks = 3; // consecutive growing checks that mean divergence (0: off)
+  // Divergence: the residual grew at `divergence_checks` checks in a row (0: off)
+  // and is `divergence_growth` times the smallest residual seen in the solve.
+  // Both together, because a converging projected Jacobi iteration fluctuates.
+  std::size_t divergence_checks = 3;
+  T divergence_growth = T(10);
   T gravity[3] = {T(0), T(0), T(-9.81)};
   T margin = T(0);             // contacts are kept while the gap is below this (m)
   T friction = T(0.5);         // friction coefficient of every contact (models with friction)
@@ -35,6 +39,7 @@ struct SolverSettings {
     if (!(tolerance > 0) || !std::isfinite(tolerance)) bad("tolerance", "must be positive and finite");
     if (max_iterations == 0) bad("max_iterations", "must be at least 1");
     if (check_every == 0) bad("check_every", "must be at least 1");
+    if (!(divergence_growth >= 1)) bad("divergence_growth", "must be at least 1");
     for (T g : gravity)
       if (!std::isfinite(g)) bad("gravity", "must be finite");
     if (!(margin >= 0) || !std::isfinite(margin)) bad("margin", "must be non-negative and finite");

@@ -1,0 +1,72 @@
+// Small scenes and helpers shared by the rbd solver and physics tests (host and GPU).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "gpusolve/rbd/body_set.hpp"
+#include "gpusolve/rbd/world.hpp"
+
+namespace rbd_test {
+
+using namespace gpusolve;
+using namespace gpusolve::rbd;
+
+// A ground plane z = 0 and a close-packed pile of layers x (n x n) spheres of
+// radius r, each layer resting in the hollows of the one below (dense: up to
+// 12 contacts per sphere), slightly jittered so no two rows are identical.
+template <class T>
+BodySet<T> pile(std::size_t n, std::size_t layers, T r = T(0.5), T gap = T(0)) {
+  BodySet<T> set;
+  set.add_plane({0, 0, 1}, 0);
+  const T d = 2 * r + gap;
+  for (std::size_t l = 0; l < layers; ++l) {
+    const T shift = (l % 2) ? d / 2 : T(0);
+    const T z = r + l * d * std::sqrt(T(2)) / 2;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) {
+        const T jitter = T(1e-3) * r * T((i * 7 + j * 3 + l) % 5);
+        set.add_sphere({i * d + shift + jitter, j * d + shift, z}, r, T(1));
+      }
+  }
+  return set;
+}
+
+// Collision detection and the external velocity change of one step, as
+// World::step does them before its solve: the input of a solver.
+template <class Device, class T, class Model>
+void prepare_solve(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, const SolverSettings<T>& s) {
+  CollisionDetection<Device, T> cd;
+  cd.detect(bodies, contacts, s.margin, s.friction);
+  using BV = typename Bodies<Device, T>::View;
+  const math::Vector3<T> g(s.gravity[0], s.gravity[1], s.gravity[2]);
+  launch(Device{}, bodies.size(), rbd::detail::ApplyExternal<BV, T>{bodies.view(), s.dt, g});
+}
+
+// Velocities (v then w, body-major) of a host store.
+template <class T>
+std::vector<T> velocities(Bodies<device::cpu, T>& b) {
+  std::vector<T> out;
+  for (std::size_t k = 0; k < b.size(); ++k)
+    for (std::size_t c = 0; c < 3; ++c) out.push_back(b.v(k, c)), out.push_back(b.w(k, c));
+  return out;
+}
+
+// Impulses (contact-major) of a host store.
+template <class T, class Model>
+std::vector<T> impulses(Contacts<device::cpu, T, Model>& c) {
+  std::vector<T> out;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t r = 0; r < Model::rows; ++r) out.push_back(c.x(i, r));
+  return out;
+}
+
+template <class T>
+T max_abs_diff(const std::vector<T>& a, const std::vector<T>& b) {
+  T m = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) m = std::fmax(m, std::fabs(a[i] - b[i]));
+  return a.size() == b.size() ? m : T(INFINITY);
+}
+
+}  // namespace rbd_test
