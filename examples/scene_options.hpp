@@ -37,6 +37,7 @@ struct Options {
   std::optional<long> steps, scale, max_iterations, check_every;
   std::optional<double> dt, tolerance, friction;
   double omega = 0.5;
+  double margin = 0.0;       // contact distance: pairs closer than this take part in the solve
   std::string accumulation;  // empty: the solver's default strategy
   std::uint64_t seed = 1;
   std::string out;           // empty: out/<scene>
@@ -87,7 +88,8 @@ inline std::string usage(const std::string& accumulations, const std::string& de
        "                        hopper's warm-up (50%) scale with it\n"
        "  --scale N             number of spheres [scene]\n"
        "  --dt X                time step in seconds [scene]\n"
-       "  --omega X             under-relaxation of the Jacobi update, in (0, 1] [0.5]\n"
+       "  --omega X             relaxation of the Jacobi update, in (0, 2); thesis: 0.2 to 0.7 [0.5]\n"
+       "  --margin X            pairs whose gap is below X (m) become contacts [0]\n"
        "  --tolerance X         residual at which the solver stops iterating [scene]\n"
        "  --max-iterations N    iterations per time step at most [scene]\n"
        "  --check-every N       residual checked every N iterations [scene]\n"
@@ -174,9 +176,11 @@ inline Options parse_options(int argc, const char* const* argv, const std::vecto
     else if (a == "--scale") o.scale = parse_long(a, next(), 1);
     else if (a == "--dt") o.dt = parse_double(a, next(), 0.0, true);
     else if (a == "--omega") {
-      o.omega = parse_double(a, next(), 0.0, true);
-      if (o.omega > 1.0) throw UsageError("--omega: must be in (0, 1], got " + args[i]);
+      const std::string v = next();
+      o.omega = parse_double(a, v, 0.0, true);
+      if (o.omega >= 2.0) throw UsageError("--omega: must be in (0, 2), got '" + v + "'");
     }
+    else if (a == "--margin") o.margin = parse_double(a, next(), 0.0, false);
     else if (a == "--tolerance") o.tolerance = parse_double(a, next(), 0.0, true);
     else if (a == "--max-iterations") o.max_iterations = parse_long(a, next(), 1);
     else if (a == "--check-every") o.check_every = parse_long(a, next(), 1);

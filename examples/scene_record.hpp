@@ -76,6 +76,7 @@ class RunRecord {
         .field("scale", *o.scale)
         .field("dt", *o.dt)
         .field("omega", o.omega)
+        .field("margin", o.margin)
         .field("tolerance", *o.tolerance)
         .field("max_iterations", *o.max_iterations)
         .field("check_every", *o.check_every)
