@@ -17,6 +17,38 @@
 
 namespace gpusolve::rbd {
 
+namespace detail {
+
+// Kernels of ContactGrouping::build (namespace scope: nvcc rejects private
+// nested types as kernel template arguments).
+template <class BV, class CV, class U32View>
+struct GroupKeys {
+  BV b;
+  CV c;
+  U32View key, sorted;
+  GPUSOLVE_HD void operator()(std::size_t e) const {
+    const std::uint32_t k = (e & 1) ? c.b[e / 2] : c.a[e / 2];
+    key[e] = b.moving(k) ? k : static_cast<std::uint32_t>(b.size());
+    sorted[e] = static_cast<std::uint32_t>(e);
+  }
+};
+template <class U32View>
+struct GroupRanks {
+  U32View key, sorted, start, slot, rank;
+  std::size_t bodies;
+  GPUSOLVE_HD void operator()(std::size_t p) const {
+    slot[sorted[p]] = static_cast<std::uint32_t>(p);
+    rank[p] = key[p] < bodies ? static_cast<std::uint32_t>(p - start[key[p]]) : 0u;
+  }
+};
+template <class U32View>
+struct SegmentLength {
+  U32View start;
+  GPUSOLVE_HD std::uint32_t operator()(std::size_t k) const { return start[k + 1] - start[k]; }
+};
+
+}  // namespace detail
+
 // Entry e = 2i + s is side s (0: body a, 1: body b) of contact i. After build(),
 // the entries of each moving body occupy one segment [start[k], start[k+1]) of
 // the sorted order; slot[e] is e's position there and rank[p] the position's
@@ -44,14 +76,16 @@ class ContactGrouping {
     grow(start_, nb + 1);
     bodies_ = nb;
     const Device dev{};
-    launch(dev, entries, Keys<BV, CV>{b, c, key_.view(), sorted_.view()}, stream);
+    launch(dev, entries, detail::GroupKeys<BV, CV, U32View>{b, c, key_.view(), sorted_.view()}, stream);
     const auto policy = detail::thrust_policy(dev, stream);
     thrust::stable_sort_by_key(policy, key_.data(), key_.data() + entries, sorted_.data());
     const thrust::counting_iterator<std::uint32_t> body(0);
     thrust::lower_bound(policy, key_.data(), key_.data() + entries, body, body + (nb + 1), start_.data());
-    launch(dev, entries, Ranks{key_.view(), sorted_.view(), start_.view(), slot_.view(), rank_.view(), nb}, stream);
+    launch(dev, entries,
+           detail::GroupRanks<U32View>{key_.view(), sorted_.view(), start_.view(), slot_.view(), rank_.view(), nb},
+           stream);
     const auto s = start_.view();
-    max_segment_ = max_over(dev, nb, SegmentLength{s}, std::uint32_t(0), stream);
+    max_segment_ = max_over(dev, nb, detail::SegmentLength<U32View>{s}, std::uint32_t(0), stream);
   }
 
   View view() { return View{slot_.view(), rank_.view(), start_.view(), bodies_}; }
@@ -65,30 +99,6 @@ class ContactGrouping {
   }
 
  private:
-  template <class BV, class CV>
-  struct Keys {
-    BV b;
-    CV c;
-    U32View key, sorted;
-    GPUSOLVE_HD void operator()(std::size_t e) const {
-      const std::uint32_t k = (e & 1) ? c.b[e / 2] : c.a[e / 2];
-      key[e] = b.moving(k) ? k : static_cast<std::uint32_t>(b.size());
-      sorted[e] = static_cast<std::uint32_t>(e);
-    }
-  };
-  struct Ranks {
-    U32View key, sorted, start, slot, rank;
-    std::size_t bodies;
-    GPUSOLVE_HD void operator()(std::size_t p) const {
-      slot[sorted[p]] = static_cast<std::uint32_t>(p);
-      rank[p] = key[p] < bodies ? static_cast<std::uint32_t>(p - start[key[p]]) : 0u;
-    }
-  };
-  struct SegmentLength {
-    U32View start;
-    GPUSOLVE_HD std::uint32_t operator()(std::size_t k) const { return start[k + 1] - start[k]; }
-  };
-
   // Storage only grows: a step with fewer contacts reuses it.
   static void grow(U32& v, std::size_t n) {
     if (v.size_x() < n) v.resize(n);

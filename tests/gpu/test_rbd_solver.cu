@@ -1,0 +1,115 @@
+// The contact solver on the GPU against the CPU backend: same scenes, same
+// numbers within float tolerance; every accumulation strategy agrees.
+#include <cmath>
+#include <vector>
+
+#include "catch_compat.hpp"
+#include "../host/test_rbd_scenes.hpp"
+
+using namespace rbd_test;
+
+namespace {
+
+// Tolerance: float has 6e-8 relative rounding; the GPU contracts to FMAs and sums
+// a body's updates in another order (atomics: in any order), so each iteration
+// differs by a few ulps of velocities of order 1 m/s. The damped Jacobi iteration
+// is a contraction, so these differences do not grow: after a few hundred
+// iterations they stay far below 300 * 6e-8 ~ 2e-5 m/s. We allow 1e-4 m/s.
+constexpr float vel_tol = 1e-4f;
+
+SolverSettings<float> settings() {
+  SolverSettings<float> s;
+  s.dt = 0.01f, s.margin = 0.02f, s.omega = 0.5f, s.friction = 0.4f;
+  s.tolerance = 1e-12f;  // never reached: every run does max_iterations
+  s.max_iterations = 300, s.check_every = 50, s.divergence_checks = 0;
+  return s;
+}
+
+struct Result {
+  std::vector<float> v, x;
+  SolverStats<float> stats;
+};
+
+template <class Device, class Strategy>
+Result solve_pile(const SolverSettings<float>& s) {
+  auto set = pile<float>(3, 3);
+  BodyManager<Device, float> m(set);
+  m.syncDeviceFull();
+  Contacts<Device, float, PyramidFriction> c;
+  prepare_solve(m.device(), c, s);
+  Result r;
+  r.stats = JacobiSolver<Device, float, PyramidFriction, Strategy>().solve(m.device(), c, s);
+  Bodies<device::cpu, float> host;
+  host = m.device();
+  r.v = velocities(host);
+  VectorD2<float, device_is<device::cpu>> x;
+  x = c.x;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) r.x.push_back(x(i, k));
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("GPU Jacobi matches the CPU backend for every accumulation strategy", "[rbd_solver][gpu]") {
+  const auto s = settings();
+  const Result cpu = solve_pile<device::cpu, Gather>(s);
+  REQUIRE(cpu.stats.contacts > 50);
+  float largest = 0;
+  for (float x : cpu.x) largest = std::fmax(largest, x);
+  REQUIRE(largest > 0.01f);
+  auto check = [&](const Result& gpu) {
+    REQUIRE(gpu.stats.contacts == cpu.stats.contacts);  // detection sorts contacts by (a, b) on both
+    CHECK(gpu.stats.iterations == cpu.stats.iterations);
+    CHECK(max_abs_diff(gpu.v, cpu.v) < vel_tol);
+    // Impulses: velocity tolerance times the heaviest inverse block entry (mass 1 bodies: < 1 kg).
+    CHECK(max_abs_diff(gpu.x, cpu.x) < vel_tol);
+  };
+  const Result cache = solve_pile<device::gpu, UpdateCache>(s);
+  const Result atomic = solve_pile<device::gpu, Atomic>(s);
+  const Result gather = solve_pile<device::gpu, Gather>(s);
+  check(cache);
+  check(atomic);
+  check(gather);
+  CHECK(cache.stats.reduction_passes == cpu.stats.reduction_passes);
+  CHECK(max_abs_diff(cache.v, atomic.v) < vel_tol);
+  CHECK(max_abs_diff(cache.v, gather.v) < vel_tol);
+  CHECK(max_abs_diff(gather.v, solve_pile<device::gpu, Gather>(s).v) == 0.0f);  // gather is deterministic
+}
+
+TEST_CASE("GPU World: resting sphere and rolling on an incline match the CPU backend", "[rbd_physics][gpu]") {
+  const float theta = 0.5235988f;  // 30 degrees
+  auto run = [&](auto device) {
+    using Device = decltype(device);
+    BodySet<float> set;
+    const std::array<float, 3> n = {-std::sin(theta), 0.f, std::cos(theta)};
+    set.add_plane(n, 0);
+    set.add_sphere({0.5f * n[0], 0, 0.5f * n[2]}, 0.5f, 1.0f);
+    SolverSettings<float> s;
+    s.dt = 0.002f, s.margin = 0.02f, s.omega = 0.8f, s.tolerance = 1e-6f, s.friction = 0.5f;
+    World<Device, float, PyramidFriction, UpdateCache> w(set, s);
+    for (int i = 0; i < 300; ++i) REQUIRE(w.step().solver.status != SolverStatus::diverged);
+    w.syncHost();
+    return set[1];
+  };
+  const auto cpu = run(device::cpu{});
+  const auto gpu = run(device::gpu{});
+  // Rolling: v = 5/7 g sin(theta) t after t = 0.6 s (first step included).
+  const float expected = 5.0f / 7.0f * 9.81f * std::sin(theta) * 0.6f;
+  const float speed = std::sqrt(gpu.v[0] * gpu.v[0] + gpu.v[2] * gpu.v[2]);
+  CHECK(speed == Approx(expected).epsilon(0.03));
+  for (int k = 0; k < 3; ++k) {
+    CHECK(gpu.v[k] == Approx(cpu.v[k]).margin(1e-3));  // 300 steps of float rounding in v ~ 2 m/s
+    CHECK(gpu.pos[k] == Approx(cpu.pos[k]).margin(1e-3));
+  }
+}
+
+TEST_CASE("GPU Jacobi reports divergence for omega = 1 on a dense pile", "[rbd_solver][gpu]") {
+  auto s = settings();
+  s.omega = 1.0f;
+  s.divergence_checks = 3;
+  s.check_every = 10;
+  s.max_iterations = 2000;
+  CHECK(solve_pile<device::gpu, UpdateCache>(s).stats.status == SolverStatus::diverged);
+  CHECK(solve_pile<device::gpu, Atomic>(s).stats.status == SolverStatus::diverged);
+}
