@@ -1,9 +1,10 @@
-// Umbrella header: the whole library.
+// Umbrella header: the containers, the launch layer and the math module.
+// The rigid-body solver has its own umbrella, gpusolve/rbd.hpp.
 #pragma once
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/core/error.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/container/vector_view.hpp"
-#include "gpusolve/container/vector_d2_offset.hpp"
+#include "gpusolve/containers.hpp"
+#include "gpusolve/math.hpp"

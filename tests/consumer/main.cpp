@@ -1,23 +1,36 @@
-// A downstream program: fills a structure-of-arrays VectorD2 through the CPU
-// backend and checks the result. Exits non-zero on a wrong answer.
+// A downstream program: moves points stored in a structure-of-arrays VectorD2
+// with an expression on Vector3Global, through the CPU backend, and checks the
+// result. Exits non-zero on a wrong answer.
+#include <cmath>
 #include <cstdio>
-#include <vector>
 
 #include <gpusolve/gpusolve.hpp>
 
 int main() {
-  const std::size_t n = 37, pitch = 64;
-  std::vector<float> storage(3 * pitch, -1.0f);
-  gpusolve::VectorD2View<float> v{storage.data(), n, 3, pitch};
-  gpusolve::launch(gpusolve::device::cpu{}, n, [v](std::size_t i) {
-    for (std::size_t j = 0; j < 3; ++j) v(i, j) = static_cast<float>(10 * i + j);
+  using namespace gpusolve;
+  const std::size_t n = 37;  // not a multiple of the 32-element padding
+  VectorD2<float, device::cpu> pos(n, 3), vel(n, 3);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < 3; ++j) {
+      pos(i, j) = static_cast<float>(i + j);
+      vel(i, j) = static_cast<float>(j) - 1.0f;
+    }
+  const float dt = 0.5f;
+  auto p = pos.view();
+  auto v = vel.view();
+  const VectorD2Offset<3> off(p.pitch);
+  launch(device::cpu{}, n, [=](std::size_t i) {
+    math::Vector3Global<float> x(p, off, i), u(v, off, i);
+    x = x + u * dt;
   });
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < 3; ++j)
-      if (v(i, j) != static_cast<float>(10 * i + j)) {
-        std::printf("consumer: wrong value at (%zu, %zu)\n", i, j);
+    for (std::size_t j = 0; j < 3; ++j) {
+      const float want = static_cast<float>(i + j) + (static_cast<float>(j) - 1.0f) * dt;
+      if (std::fabs(pos(i, j) - want) > 1e-6f) {
+        std::printf("consumer: wrong value at (%zu, %zu): %g, want %g\n", i, j, pos(i, j), want);
         return 1;
       }
-  std::printf("consumer: ok\n");
+    }
+  std::printf("consumer: ok (%zu points, pitch %zu)\n", n, pos.pitch());
   return 0;
 }
