@@ -85,9 +85,13 @@ class Well {
     return c;
   }
 
+  // A fixed camera on the well (not fitted to the spheres, which start high and
+  // may scatter): frames of one run line up as an animation.
   gpusolve::rbd::io::PovOptions camera() const {
     gpusolve::rbd::io::PovOptions p;
-    p.view_dir = {0.7, -1.7, 1.3};
+    p.auto_camera = false;
+    p.look_at = {0, 0, 12};
+    p.camera = {35, -85, 75};
     return p;
   }
 

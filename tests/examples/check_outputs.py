@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks what one gpusolve_scenes run wrote: the files exist, parse, and hold sane numbers.
 
-usage: check_outputs.py DIR SCENE STEPS [--max-penetration X]
+usage: check_outputs.py DIR SCENE STEPS [--max-penetration X] [--min-contacts N]
 Exits 1 with the list of problems, 0 when all checks pass. Standard library only.
 """
 import argparse
@@ -102,6 +102,7 @@ def main():
     ap.add_argument("scene")
     ap.add_argument("steps", type=int)
     ap.add_argument("--max-penetration", type=float, default=0.5)
+    ap.add_argument("--min-contacts", type=int, default=0, help="contacts some step must reach")
     a = ap.parse_args()
     problems = []
     need = [os.path.join(a.dir, n) for n in ("stats.csv", "summary.json")]
@@ -113,6 +114,8 @@ def main():
         return 1
     stats = check_stats(need[0], a.steps, a.max_penetration, problems)
     check_summary(need[1], a.scene, a.steps, a.max_penetration, stats, problems)
+    if stats and max(r["contacts"] for r in stats) < a.min_contacts:
+        problems.append(f"no step reached {a.min_contacts} contact(s): nothing was solved")
     spheres = check_vtk(frames[-1], problems)
     if stats and spheres >= 0 and spheres > stats[-1]["bodies"]:
         problems.append(f"{frames[-1]}: {spheres} spheres but {stats[-1]['bodies']} bodies")
