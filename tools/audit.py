@@ -272,7 +272,8 @@ def demangle(names):
     """{mangled: readable} using cu++filt if present, else c++filt; names a
     demangler cannot read (or all, with no demangler) map to themselves."""
     names = list(dict.fromkeys(names))
-    tool = find_tool("cu++filt") or shutil.which("c++filt")
+    # binutils first: cu++filt spells template parameters differently (T1 *).
+    tool = shutil.which("c++filt") or find_tool("cu++filt")
     result = {n: n for n in names}
     if tool and names:
         try:
