@@ -184,6 +184,8 @@ TEST_CASE("bad solver settings give InvalidArgumentError naming the field", "[rb
   CHECK(with([](auto& s) { s.tolerance = 0; }).find("`tolerance`") != std::string::npos);
   CHECK(with([](auto& s) { s.friction = -0.1; }).find("`friction`") != std::string::npos);
   CHECK(with([](auto& s) { s.margin = -0.1; }).find("`margin`") != std::string::npos);
+  CHECK(with([](auto& s) { s.correction = 0; }).find("`correction`") != std::string::npos);
+  CHECK(with([](auto& s) { s.correction = 1.5; }).find("`correction`") != std::string::npos);
   CHECK(with([](auto& s) { s.check_every = 0; }).find("`check_every`") != std::string::npos);
   CHECK(with([](auto&) {}).find("no InvalidArgumentError") != std::string::npos);
   World<device::cpu, double> w(set, SolverSettings<double>{});

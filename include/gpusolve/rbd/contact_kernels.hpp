@@ -87,16 +87,19 @@ struct InverseBlocks {
 };
 
 // CalcNextPhi (thesis Algorithm 1): the contact-space error of the current
-// velocities, rhs = Q^T (va + wa x ra - vb - wb x rb) + (phi0 / dt, 0, 0).
+// velocities, rhs = Q^T (va + wa x ra - vb - wb x rb) + (phi / dt, 0, 0).
 // The normal row asks for a gap rate of at least -phi0/dt: a contact still
 // open by phi0 may close within the step but no further (it is not pushed
-// apart early), and a penetration is corrected within one step.
+// apart early). A penetration (phi0 < 0) is removed only by the fraction
+// `correction` per step: removing it all at once turns a deep contact into a
+// separation speed of |phi0|/dt, which throws bodies out of a pile.
 template <class Model, class BV, class CV, class T>
 struct CalcNextPhi {
   BV b;
   CV c;
   VectorD2View<T> rhs;  // n x rows
   T inv_dt;
+  T correction = T(1);
   GPUSOLVE_HD void operator()(std::size_t i) const {
     const detail::Frame<T, Model, CV> f(c, i);
     const std::uint32_t ia = c.a[i], ib = c.b[i];
@@ -104,7 +107,8 @@ struct CalcNextPhi {
         detail::point_velocity(detail::load3<T>(b.v, ia), detail::load3<T>(b.w, ia), detail::load3<T>(c.ra, i)) -
         detail::point_velocity(detail::load3<T>(b.v, ib), detail::load3<T>(b.w, ib), detail::load3<T>(c.rb, i));
     for (std::size_t r = 0; r < Model::rows; ++r) rhs(i, r) = math::dot(f.q[r], du);
-    rhs(i, 0) += c.phi0[i] * inv_dt;
+    const T phi0 = c.phi0[i];
+    rhs(i, 0) += (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;
   }
 };
 

@@ -55,7 +55,7 @@ class JacobiSolver {
     const auto rhs = rhs_.view();
     const auto residual = residual_.view();
     for (std::size_t it = 1;; ++it) {
-      launch(dev, nc, CalcNextPhi<Model, BV, CV, T>{b, c, rhs, T(1) / s.dt}, stream);
+      launch(dev, nc, CalcNextPhi<Model, BV, CV, T>{b, c, rhs, T(1) / s.dt, s.correction}, stream);
       const bool measure = monitor.checks(it);
       launch(dev, nc, ResolveCollisions<Model, BV, CV, Sink, T>{b, c, rhs, acc_.sink(), s.omega, measure, residual},
              stream);

@@ -50,7 +50,7 @@ SolverStats<T> solve_gauss_seidel(Bodies<device::cpu, T>& bodies, Contacts<devic
   VectorD1<T, device_is<device::cpu>> residual(nc);
   contacts.x.fill(T(0));
   const InverseBlocks<Model, BV, CV, T> blocks{b, c};
-  const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs.view(), T(1) / s.dt};
+  const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs.view(), T(1) / s.dt, s.correction};
   ConvergenceMonitor<T> monitor(s, stats);
   for (std::size_t i = 0; i < nc; ++i) blocks(i);
   for (std::size_t it = 1;; ++it) {

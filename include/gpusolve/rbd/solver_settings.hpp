@@ -24,6 +24,7 @@ struct SolverSettings {
   T divergence_growth = T(10);
   T gravity[3] = {T(0), T(0), T(-9.81)};
   T margin = T(0);             // contacts are kept while the gap is below this (m)
+  T correction = T(0.2);       // fraction of a penetration removed per step, in (0, 1]
   T friction = T(0.5);         // friction coefficient of every contact (models with friction)
   bool throw_on_divergence = false;  // solve() throws DivergenceError instead of reporting it
 
@@ -43,6 +44,7 @@ struct SolverSettings {
     for (T g : gravity)
       if (!std::isfinite(g)) bad("gravity", "must be finite");
     if (!(margin >= 0) || !std::isfinite(margin)) bad("margin", "must be non-negative and finite");
+    if (!(correction > 0 && correction <= 1)) bad("correction", "must lie in (0, 1]");
     if (!(friction >= 0) || !std::isfinite(friction)) bad("friction", "must be non-negative and finite");
   }
 };
