@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "catch_compat.hpp"
 #include "gpusolve/rbd/pgs.hpp"
@@ -127,12 +128,16 @@ TEST_CASE("divergence is detected: omega = 1 on a dense pile, and NaN velocities
   SolverSettings<double> s = tight();
   s.max_iterations = 2000;
   s.omega = 1.0;  // thesis 5.2: undamped Jacobi diverges on such piles
+  s.max_retries = 0;  // adaptive under-relaxation off: see the next test case
   {
     Store st(set);
     st.syncDeviceFull();
     Contacts<device::cpu, double, PyramidFriction> c;
     const auto r = jacobi<PyramidFriction, Gather>(st.device(), c, s);
     CHECK(r.status == SolverStatus::diverged);
+    CHECK(r.retries == 0);
+    CHECK(r.omega == 1.0);
+    CHECK(r.total_iterations == r.iterations);
     CHECK(r.iterations < 200);
     CHECK(r.residual() > 1e3 * r.residuals.front() / 10);
   }
@@ -166,7 +171,81 @@ TEST_CASE("divergence is detected: omega = 1 on a dense pile, and NaN velocities
     CHECK(r.status == SolverStatus::diverged);
     CHECK(r.iterations == t.check_every);
     CHECK(std::isinf(r.residual()));
+    t.max_retries = 2;  // restarting from a NaN velocity cannot help: every retry diverges as fast
+    prepare_solve(st.device(), c, t);
+    st.device().v(5, 2) = std::numeric_limits<double>::quiet_NaN();
+    const auto rr = JacobiSolver<device::cpu, double, Frictionless, Atomic>().solve(st.device(), c, t);
+    CHECK(rr.status == SolverStatus::diverged);
+    CHECK(rr.retries == 2);
+    CHECK(rr.omega == 0.5 * t.retry_omega_factor * t.retry_omega_factor);
+    CHECK(rr.total_iterations == 3 * t.check_every);
   }
+}
+
+TEST_CASE("adaptive under-relaxation: a diverging solve restarts at a smaller omega", "[rbd_solver]") {
+  auto set = pile<double>(3, 3);
+  SolverSettings<double> s = tight();
+  s.omega = 1.0;  // diverges on this pile (test case above)
+  s.tolerance = 1e-6;
+  s.max_iterations = 5000;
+  REQUIRE(s.max_retries == 3);  // on by default
+  REQUIRE(s.retry_omega_factor == 0.5);
+  auto solve = [&](const SolverSettings<double>& t, auto model) {
+    using Model = decltype(model);
+    Store st(set);
+    st.syncDeviceFull();
+    Contacts<device::cpu, double, Model> c;
+    const auto r = jacobi<Model, Gather>(st.device(), c, t);
+    return std::make_pair(r, velocities(st.device()));
+  };
+  const auto [r, v] = solve(s, PyramidFriction{});
+  CHECK(r.status == SolverStatus::converged);
+  REQUIRE(r.retries >= 1);
+  CHECK(r.retries <= s.max_retries);
+  CHECK(r.omega == s.omega * std::pow(s.retry_omega_factor, double(r.retries)));
+  CHECK(r.total_iterations > r.iterations);  // the diverged attempts' iterations are counted
+  CHECK(r.residual() < s.tolerance);
+  CHECK(r.residuals.size() == r.checked_at.size());
+  CHECK(r.checked_at.back() == r.iterations);  // the history is the last attempt's
+  // The retry restarted from the solve's own start: it is exactly a plain solve at the final omega.
+  SolverSettings<double> direct = s;
+  direct.omega = r.omega;
+  direct.max_retries = 0;
+  const auto [d, vd] = solve(direct, PyramidFriction{});
+  CHECK(d.status == SolverStatus::converged);
+  CHECK(d.iterations == r.iterations);
+  CHECK(max_abs_diff(v, vd) == 0.0);
+
+  // Retries that all diverge: reported (and thrown when asked) with the last omega.
+  SolverSettings<double> few = s;
+  few.max_retries = 1;
+  few.retry_omega_factor = 0.99;  // omega 0.99 diverges as well
+  const auto [f, vf] = solve(few, PyramidFriction{});
+  CHECK(f.status == SolverStatus::diverged);
+  CHECK(f.retries == 1);
+  CHECK(f.omega == Approx(0.99));
+  few.throw_on_divergence = true;
+  try {
+    solve(few, PyramidFriction{});
+    FAIL("no DivergenceError");
+  } catch (const DivergenceError& e) {
+    CHECK(e.retries() == 1);
+    CHECK(e.omega() == Approx(0.99));
+    CHECK(std::string(e.what()).find("after 1 retry") != std::string::npos);
+  }
+
+  // Gauss-Seidel shares the rule (it does not diverge on this pile even at omega 1.95:
+  // a NaN velocity makes every attempt diverge).
+  Store gs(set);
+  gs.syncDeviceFull();
+  Contacts<device::cpu, double, PyramidFriction> gc;
+  prepare_solve(gs.device(), gc, s);
+  gs.device().w(7, 0) = std::numeric_limits<double>::quiet_NaN();
+  const auto g = solve_gauss_seidel(gs.device(), gc, s);
+  CHECK(g.status == SolverStatus::diverged);
+  CHECK(g.retries == s.max_retries);
+  CHECK(g.omega == s.omega * std::pow(s.retry_omega_factor, double(s.max_retries)));
+  CHECK(g.total_iterations == (s.max_retries + 1) * s.check_every);
 }
 
 TEST_CASE("bad solver settings give InvalidArgumentError naming the field", "[rbd_solver]") {
@@ -187,6 +266,11 @@ TEST_CASE("bad solver settings give InvalidArgumentError naming the field", "[rb
   CHECK(with([](auto& s) { s.correction = 0; }).find("`correction`") != std::string::npos);
   CHECK(with([](auto& s) { s.correction = 1.5; }).find("`correction`") != std::string::npos);
   CHECK(with([](auto& s) { s.check_every = 0; }).find("`check_every`") != std::string::npos);
+  CHECK(with([](auto& s) { s.retry_omega_factor = 0; }).find("`retry_omega_factor`") != std::string::npos);
+  CHECK(with([](auto& s) { s.retry_omega_factor = 1; }).find("`retry_omega_factor`") != std::string::npos);
+  CHECK(with([](auto& s) { s.max_retries = 5000; }).find("`max_retries`") != std::string::npos);
+  CHECK(with([](auto& s) { s.max_retries = 0; }).find("no InvalidArgumentError") != std::string::npos);
+  CHECK(with([](auto& s) { s.max_retries = 20; }).find("no InvalidArgumentError") != std::string::npos);
   CHECK(with([](auto&) {}).find("no InvalidArgumentError") != std::string::npos);
   World<device::cpu, double> w(set, SolverSettings<double>{});
   SolverSettings<double> bad;

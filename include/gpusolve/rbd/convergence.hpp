@@ -74,12 +74,6 @@ class ConvergenceMonitor {
     return false;
   }
 
-  // Throws DivergenceError when the solve diverged and the settings ask for it.
-  void raise_if_asked() const {
-    if (stats_.status == SolverStatus::diverged && s_.throw_on_divergence)
-      throw DivergenceError(stats_.iterations, double(stats_.residual()));
-  }
-
  private:
   bool finish(SolverStatus st) {
     stats_.status = st;

@@ -13,6 +13,7 @@
 #include "gpusolve/rbd/contacts.hpp"
 #include "gpusolve/rbd/convergence.hpp"
 #include "gpusolve/rbd/reduce.hpp"
+#include "gpusolve/rbd/relaxation.hpp"
 #include "gpusolve/rbd/solver_settings.hpp"
 #include "gpusolve/rbd/solver_stats.hpp"
 
@@ -21,8 +22,9 @@ namespace gpusolve::rbd {
 // Solves the contact LCP of one time step for the bodies' velocities. On entry
 // the velocities include the step's external forces (v + dt M^-1 f); on exit
 // they are the constrained velocities and contacts.x holds each contact's
-// impulse (normal, t, o), starting from zero. Scratch storage is kept between
-// calls. Strategy: UpdateCache, Atomic or Gather (accumulation.hpp).
+// impulse (normal, t, o), starting from zero. A diverging solve is retried at a
+// smaller omega (relaxation.hpp, SolverSettings::max_retries). Scratch storage
+// is kept between calls. Strategy: UpdateCache, Atomic or Gather (accumulation.hpp).
 template <class Device, class T, class Model, class Strategy = Gather>
 class JacobiSolver {
  public:
@@ -36,6 +38,7 @@ class JacobiSolver {
     s.validate();
     SolverStats<T> stats;
     stats.contacts = contacts.size();
+    stats.omega = s.omega;
     const std::size_t nc = contacts.size();
     if (nc == 0) return stats;  // nothing to solve: converged in zero iterations
     const Device dev{};
@@ -46,23 +49,26 @@ class JacobiSolver {
       residual_.resize(nc);
     }
     contacts.x.fill(T(0), stream);
-    launch(dev, nc, InverseBlocks<Model, BV, CV, T>{b, c}, stream);
+    launch(dev, nc, InverseBlocks<Model, BV, CV, T>{b, c}, stream);  // independent of velocities: once
     acc_.prepare(b, c, stream);
     stats.reduction_passes = acc_.passes();
 
     using Sink = decltype(acc_.sink());
-    ConvergenceMonitor<T> monitor(s, stats);
     const auto rhs = rhs_.view();
     const auto residual = residual_.view();
-    for (std::size_t it = 1;; ++it) {
-      launch(dev, nc, CalcNextPhi<Model, BV, CV, T>{b, c, rhs, T(1) / s.dt, s.correction}, stream);
-      const bool measure = monitor.checks(it);
-      launch(dev, nc, ResolveCollisions<Model, BV, CV, Sink, T>{b, c, rhs, acc_.sink(), s.omega, measure, residual},
-             stream);
-      acc_.apply(b, stream);
-      if (measure && monitor.stop(it, detail::measured_residual<Device>(b, residual, nc, stream))) break;
-    }
-    monitor.raise_if_asked();
+    auto attempt = [&](T omega, SolverStats<T>& st) {
+      contacts.x.fill(T(0), stream);
+      ConvergenceMonitor<T> monitor(s, st);
+      for (std::size_t it = 1;; ++it) {
+        launch(dev, nc, CalcNextPhi<Model, BV, CV, T>{b, c, rhs, T(1) / s.dt, s.correction}, stream);
+        const bool measure = monitor.checks(it);
+        launch(dev, nc, ResolveCollisions<Model, BV, CV, Sink, T>{b, c, rhs, acc_.sink(), omega, measure, residual},
+               stream);
+        acc_.apply(b, stream);
+        if (measure && monitor.stop(it, detail::measured_residual<Device>(b, residual, nc, stream))) break;
+      }
+    };
+    solve_relaxed(s, b, start_, stats, attempt, stream);
     return stats;
   }
 
@@ -70,6 +76,7 @@ class JacobiSolver {
   VectorD2<T, device_is<Device>> rhs_;
   VectorD1<T, device_is<Device>> residual_;
   Accumulator<Strategy, Device, T> acc_;
+  VelocitySnapshot<Device, T> start_;
 };
 
 }  // namespace gpusolve::rbd

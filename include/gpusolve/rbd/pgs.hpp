@@ -12,6 +12,7 @@
 #include "gpusolve/rbd/contact_kernels.hpp"
 #include "gpusolve/rbd/contacts.hpp"
 #include "gpusolve/rbd/convergence.hpp"
+#include "gpusolve/rbd/relaxation.hpp"
 #include "gpusolve/rbd/solver_settings.hpp"
 #include "gpusolve/rbd/solver_stats.hpp"
 
@@ -33,7 +34,8 @@ struct DirectSink {
 
 // Same contract as JacobiSolver::solve; one iteration is one sweep over the
 // contacts in order, and the residual (contact_kernels.hpp) is the largest
-// velocity change of that sweep. Use omega = 1 for plain Gauss-Seidel.
+// velocity change of that sweep; a diverging sweep is retried at a smaller omega
+// like the Jacobi solver's. Use omega = 1 for plain Gauss-Seidel.
 template <class T, class Model>
 SolverStats<T> solve_gauss_seidel(Bodies<device::cpu, T>& bodies, Contacts<device::cpu, T, Model>& contacts,
                                   const SolverSettings<T>& s) {
@@ -43,28 +45,32 @@ SolverStats<T> solve_gauss_seidel(Bodies<device::cpu, T>& bodies, Contacts<devic
   SolverStats<T> stats;
   const std::size_t nc = contacts.size();
   stats.contacts = nc;
+  stats.omega = s.omega;
   if (nc == 0) return stats;
   const BV b = bodies.view();
   const CV c = contacts.view();
   VectorD2<T, device_is<device::cpu>> rhs(nc, Model::rows);
   VectorD1<T, device_is<device::cpu>> residual(nc);
-  contacts.x.fill(T(0));
   const InverseBlocks<Model, BV, CV, T> blocks{b, c};
   const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs.view(), T(1) / s.dt, s.correction};
-  ConvergenceMonitor<T> monitor(s, stats);
   for (std::size_t i = 0; i < nc; ++i) blocks(i);
-  for (std::size_t it = 1;; ++it) {
-    const bool measure = monitor.checks(it);
-    const ResolveCollisions<Model, BV, CV, detail::DirectSink<BV, T>, T> resolve{
-        b, c, rhs.view(), detail::DirectSink<BV, T>{b}, s.omega, measure, residual.view()};
-    for (std::size_t i = 0; i < nc; ++i) {
-      phi(i);
-      resolve(i);
+  auto attempt = [&](T omega, SolverStats<T>& st) {
+    contacts.x.fill(T(0));
+    ConvergenceMonitor<T> monitor(s, st);
+    for (std::size_t it = 1;; ++it) {
+      const bool measure = monitor.checks(it);
+      const ResolveCollisions<Model, BV, CV, detail::DirectSink<BV, T>, T> resolve{
+          b, c, rhs.view(), detail::DirectSink<BV, T>{b}, omega, measure, residual.view()};
+      for (std::size_t i = 0; i < nc; ++i) {
+        phi(i);
+        resolve(i);
+      }
+      if (measure && monitor.stop(it, detail::measured_residual<device::cpu>(b, residual.view(), nc, stream_t{})))
+        break;
     }
-    if (!measure) continue;
-    if (monitor.stop(it, detail::measured_residual<device::cpu>(b, residual.view(), nc, stream_t{}))) break;
-  }
-  monitor.raise_if_asked();
+  };
+  VelocitySnapshot<device::cpu, T> start;
+  solve_relaxed(s, b, start, stats, attempt);
   return stats;
 }
 

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -22,6 +23,12 @@ struct SolverSettings {
   // Both together, because a converging projected Jacobi iteration fluctuates.
   std::size_t divergence_checks = 3;
   T divergence_growth = T(10);
+  // Adaptive under-relaxation (thesis 5.2 leaves it as future work): a solve that
+  // diverges restarts from the velocities it began with, omega multiplied by
+  // `retry_omega_factor`, at most `max_retries` times (0: off); only when the last
+  // attempt diverges too is the step reported diverged.
+  std::size_t max_retries = 3;
+  T retry_omega_factor = T(0.5);
   T gravity[3] = {T(0), T(0), T(-9.81)};
   T margin = T(0);             // contacts are kept while the gap is below this (m)
   T correction = T(0.2);       // fraction of a penetration removed per step, in (0, 1]
@@ -41,6 +48,10 @@ struct SolverSettings {
     if (max_iterations == 0) bad("max_iterations", "must be at least 1");
     if (check_every == 0) bad("check_every", "must be at least 1");
     if (!(divergence_growth >= 1)) bad("divergence_growth", "must be at least 1");
+    if (!(retry_omega_factor > 0 && retry_omega_factor < 1)) bad("retry_omega_factor", "must lie in (0, 1)");
+    // The last retry's omega must still be a normal positive number of type T.
+    if (!(omega * std::pow(retry_omega_factor, T(max_retries)) >= std::numeric_limits<T>::min()))
+      bad("max_retries", "makes omega * retry_omega_factor^max_retries underflow");
     for (T g : gravity)
       if (!std::isfinite(g)) bad("gravity", "must be finite");
     if (!(margin >= 0) || !std::isfinite(margin)) bad("margin", "must be non-negative and finite");
