@@ -132,3 +132,27 @@ TEST_CASE("GPU adaptive under-relaxation restarts like the CPU backend", "[rbd_s
     CHECK(max_abs_diff(gpu.v, cpu.v) < vel_tol);  // restored on the device: the last attempt starts clean
   }
 }
+
+TEST_CASE("GPU residual check: one reduction, same value as the CPU, scratch kept", "[rbd_solver][gpu]") {
+  const std::size_t nb = 5000, nc = 12000;
+  Bodies<device::cpu, float> hb(nb);
+  VectorD1<float, device_is<device::cpu>> hr(nc);
+  for (std::size_t i = 0; i < nc; ++i) hr(i) = float((i * 7919) % 1000) * 1e-3f;
+  hr(8888) = 2.5f;
+  Bodies<device::gpu, float> db;
+  db = hb;
+  VectorD1<float, device_is<device::gpu>> dr;
+  dr = hr;
+  ResidualCheck<device::cpu, float> on_cpu;
+  ResidualCheck<device::gpu, float> on_gpu;
+  CHECK(on_gpu(db.view(), dr.view(), nc) == on_cpu(hb.view(), hr.view(), nc));
+  CHECK(on_gpu(db.view(), dr.view(), nc) == 2.5f);
+  const std::size_t bytes = on_gpu.scratch_bytes();
+  CHECK(bytes > 0);
+  CHECK(on_gpu(db.view(), dr.view(), 100) == on_cpu(hb.view(), hr.view(), 100));
+  hb.v(nb - 1, 0) = std::nanf("");
+  db = hb;
+  CHECK(std::isinf(on_gpu(db.view(), dr.view(), nc)));
+  CHECK(std::isinf(on_gpu(db.view(), dr.view(), 10)));  // body beyond the contacts
+  CHECK(on_gpu.scratch_bytes() == bytes);  // no reallocation from check to check
+}

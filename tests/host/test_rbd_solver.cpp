@@ -248,6 +248,27 @@ TEST_CASE("adaptive under-relaxation: a diverging solve restarts at a smaller om
   CHECK(g.total_iterations == (s.max_retries + 1) * s.check_every);
 }
 
+TEST_CASE("the residual check: largest contact residual, +inf for a non-finite velocity", "[rbd_solver]") {
+  Bodies<device::cpu, double> b(6);
+  VectorD1<double, device_is<device::cpu>> r(4);
+  const double values[4] = {0.25, 3.5, 0.0, 1.0};
+  for (std::size_t i = 0; i < 4; ++i) r(i) = values[i];
+  ResidualCheck<device::cpu, double> check;
+  CHECK(check(b.view(), r.view(), 4) == 3.5);
+  CHECK(check(b.view(), r.view(), 1) == 0.25);  // only the first `contacts` entries count
+  CHECK(check(b.view(), r.view(), 0) == 0.0);
+  b.v(5, 1) = std::numeric_limits<double>::quiet_NaN();  // a body past the last contact
+  CHECK(std::isinf(check(b.view(), r.view(), 4)));
+  b.v(5, 1) = 0;
+  b.w(2, 0) = -std::numeric_limits<double>::infinity();
+  CHECK(std::isinf(check(b.view(), r.view(), 4)));
+  b.w(2, 0) = 0;
+  Bodies<device::cpu, double> few(2);  // more contacts than bodies
+  r(3) = 7.0;
+  CHECK(check(few.view(), r.view(), 4) == 7.0);
+  CHECK(check.scratch_bytes() == 0);  // the host loop needs none
+}
+
 TEST_CASE("bad solver settings give InvalidArgumentError naming the field", "[rbd_solver]") {
   BodySet<double> set;
   set.add_plane({0, 0, 1}, 0);

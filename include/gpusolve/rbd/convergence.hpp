@@ -16,34 +16,42 @@ namespace gpusolve::rbd {
 
 namespace detail {
 
-template <class T>
-struct ResidualAt {
-  VectorD1View<T> r;
-  GPUSOLVE_HD T operator()(std::size_t i) const { return r[i]; }
-};
-
-// +inf for a body whose velocity is not finite, 0 otherwise: folded into the
-// residual check so that a NaN velocity reads as divergence.
+// The one reduction of a residual check, over max(contacts, bodies) indices:
+// residual[i] for a contact i, +inf where body i's velocity is not finite (so a
+// NaN velocity reads as divergence even on a body without contacts), else 0.
 template <class BV, class T>
-struct VelocityNotFinite {
+struct ResidualOrNotFinite {
   BV b;
-  GPUSOLVE_HD T operator()(std::size_t k) const {
-    for (std::size_t c = 0; c < 3; ++c)
-      if (!(std::fabs(b.v(k, c)) <= std::numeric_limits<T>::max()) ||
-          !(std::fabs(b.w(k, c)) <= std::numeric_limits<T>::max()))
-        return std::numeric_limits<T>::infinity();
-    return T(0);
+  VectorD1View<T> residual;
+  std::size_t contacts;
+  GPUSOLVE_HD T operator()(std::size_t i) const {
+    if (i < b.size())
+      for (std::size_t c = 0; c < 3; ++c)
+        if (!(std::fabs(b.v(i, c)) <= std::numeric_limits<T>::max()) ||
+            !(std::fabs(b.w(i, c)) <= std::numeric_limits<T>::max()))
+          return std::numeric_limits<T>::infinity();
+    return i < contacts ? residual[i] : T(0);
   }
 };
 
-// The largest residual of the contacts, +inf when any body velocity is not finite.
-template <class Device, class BV, class T>
-T measured_residual(const BV& b, VectorD1View<T> residual, std::size_t contacts, stream_t stream) {
-  const T r = max_over(Device{}, contacts, ResidualAt<T>{residual}, T(0), stream);
-  return std::fmax(r, max_over(Device{}, b.size(), VelocityNotFinite<BV, T>{b}, T(0), stream));
-}
-
 }  // namespace detail
+
+// The measured LCP residual of a solver: the largest residual of the contacts
+// (ResolveCollisions with measure set), +inf when any body velocity is not
+// finite. One reduction per check; its scratch is kept between checks.
+template <class Device, class T>
+class ResidualCheck {
+ public:
+  template <class BV>
+  T operator()(const BV& b, VectorD1View<T> residual, std::size_t contacts, stream_t stream = stream_t{}) {
+    const std::size_t n = contacts > b.size() ? contacts : b.size();
+    return reduce_(n, detail::ResidualOrNotFinite<BV, T>{b, residual, contacts}, T(0), stream);
+  }
+  std::size_t scratch_bytes() const { return reduce_.scratch_bytes(); }
+
+ private:
+  MaxReducer<Device, T> reduce_;
+};
 
 template <class T>
 class ConvergenceMonitor {

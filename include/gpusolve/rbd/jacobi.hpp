@@ -65,7 +65,7 @@ class JacobiSolver {
         launch(dev, nc, ResolveCollisions<Model, BV, CV, Sink, T>{b, c, rhs, acc_.sink(), omega, measure, residual},
                stream);
         acc_.apply(b, stream);
-        if (measure && monitor.stop(it, detail::measured_residual<Device>(b, residual, nc, stream))) break;
+        if (measure && monitor.stop(it, check_(b, residual, nc, stream))) break;
       }
     };
     solve_relaxed(s, b, start_, stats, attempt, stream);
@@ -77,6 +77,7 @@ class JacobiSolver {
   VectorD1<T, device_is<Device>> residual_;
   Accumulator<Strategy, Device, T> acc_;
   VelocitySnapshot<Device, T> start_;
+  ResidualCheck<Device, T> check_;
 };
 
 }  // namespace gpusolve::rbd

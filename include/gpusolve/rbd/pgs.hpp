@@ -54,6 +54,7 @@ SolverStats<T> solve_gauss_seidel(Bodies<device::cpu, T>& bodies, Contacts<devic
   const InverseBlocks<Model, BV, CV, T> blocks{b, c};
   const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs.view(), T(1) / s.dt, s.correction};
   for (std::size_t i = 0; i < nc; ++i) blocks(i);
+  ResidualCheck<device::cpu, T> check;
   auto attempt = [&](T omega, SolverStats<T>& st) {
     contacts.x.fill(T(0));
     ConvergenceMonitor<T> monitor(s, st);
@@ -65,8 +66,7 @@ SolverStats<T> solve_gauss_seidel(Bodies<device::cpu, T>& bodies, Contacts<devic
         phi(i);
         resolve(i);
       }
-      if (measure && monitor.stop(it, detail::measured_residual<device::cpu>(b, residual.view(), nc, stream_t{})))
-        break;
+      if (measure && monitor.stop(it, check(b, residual.view(), nc))) break;
     }
   };
   VelocitySnapshot<device::cpu, T> start;

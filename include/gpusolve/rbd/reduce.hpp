@@ -1,15 +1,25 @@
 // Index-space reductions (max, sum) on a backend through Thrust: the same call
-// serves device::cpu and device::gpu and returns the value on the host.
+// serves device::cpu and device::gpu and returns the value on the host; and
+// MaxReducer, the same max-reduction with its scratch kept for repeated calls.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <type_traits>
 
 #include <thrust/functional.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/transform_reduce.h>
 
+#include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
+#include "gpusolve/core/device.hpp"
+#include "gpusolve/core/error.hpp"
 #include "gpusolve/rbd/thrust_backend.hpp"
+
+#if GPUSOLVE_HAS_NVCC
+#include <cub/device/device_reduce.cuh>
+#endif
 
 namespace gpusolve::rbd {
 
@@ -30,5 +40,40 @@ template <class Device, class F, class T>
 T sum_over(Device dev, std::size_t n, F f, T init, stream_t stream = stream_t{}) {
   return reduce_indices(dev, n, f, init, thrust::plus<T>(), stream);
 }
+
+// max_over for a reduction repeated many times (the solver's residual check):
+// on the GPU, CUB's TransformReduce into temporary storage and a result slot
+// kept here, so a warm call allocates nothing and costs one kernel and one
+// read-back (Thrust allocates and frees its temporary storage on every call).
+// On the host, Thrust's sequential loop, which allocates nothing.
+template <class Device, class T>
+class MaxReducer {
+ public:
+  template <class F>
+  T operator()(std::size_t n, F f, T init, stream_t stream = stream_t{}) {
+#if GPUSOLVE_HAS_NVCC
+    if constexpr (std::is_same_v<Device, device::gpu>) {
+      if (n == 0) return init;
+      if (out_.size_x() == 0) out_.resize(1);
+      const thrust::counting_iterator<std::size_t> first(0);
+      std::size_t bytes = 0;
+      GPUSOLVE_CUDA_CHECK(cub::DeviceReduce::TransformReduce(nullptr, bytes, first, out_.data(), n,
+                                                             thrust::maximum<T>(), f, init, stream));
+      if (temp_.size_x() < bytes) temp_.resize(bytes);
+      GPUSOLVE_CUDA_CHECK(cub::DeviceReduce::TransformReduce(temp_.data(), bytes, first, out_.data(), n,
+                                                             thrust::maximum<T>(), f, init, stream));
+      return detail::read_back<Device>(out_.data(), 0, stream);
+    }
+#endif
+    return max_over(Device{}, n, f, init, stream);
+  }
+
+  // Bytes of temporary storage held (GPU only; stays put once warm).
+  std::size_t scratch_bytes() const { return temp_.size_x(); }
+
+ private:
+  VectorD1<std::uint8_t, device_is<Device>> temp_;
+  VectorD1<T, device_is<Device>> out_;
+};
 
 }  // namespace gpusolve::rbd
