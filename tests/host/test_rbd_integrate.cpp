@@ -1,6 +1,7 @@
 // Time integration: free fall against the closed form, forces and torques,
 // a spinning non-isotropic body (gyroscopic term), the AABB update.
 #include <cmath>
+#include <vector>
 
 #include "catch_compat.hpp"
 #include "gpusolve/rbd/body_manager.hpp"
@@ -104,4 +105,47 @@ TEST_CASE("integration moves the bounding-sphere AABB with the body", "[rbd][int
   }
   CHECK(d.pos(0, 0) == Approx(1.f));
   CHECK(d.aabb(0, 1) == Approx(-2.25f));
+}
+
+TEST_CASE("integrate is apply_forces (velocities only) then move (positions only)", "[rbd][integrate]") {
+  BodySet<double> s;
+  s.add_sphere({0.0, 0.0, 1.0}, 1.0, 2.0, {1.0, 2.0, 3.5});  // non-isotropic: a gyroscopic term
+  s[0].v = {0.5, -1.0, 2.0};
+  s[0].w = {0.4, 1.5, 3.0};
+  s[0].force = {1.0, 2.0, 3.0};
+  s[0].torque = {0.3, -0.2, 0.1};
+  s.add_fixed_sphere({5.0, 5.0, 5.0}, 1.0);
+  BodyManager<device::cpu, double> whole(s), split(s);
+  whole.syncDevice(), split.syncDevice();
+  const double dt = 0.01;
+  const math::Vector3<double> g(0.0, 0.0, -9.81);
+  auto state = [](Bodies<device::cpu, double>& b, std::size_t k) {
+    std::vector<double> out;
+    for (int c = 0; c < 3; ++c) out.push_back(b.v(k, c)), out.push_back(b.w(k, c));
+    for (int c = 0; c < 3; ++c) out.push_back(b.pos(k, c));
+    for (int c = 0; c < 4; ++c) out.push_back(b.q(k, c));
+    return out;
+  };
+  auto& d = split.device();
+  const auto start = state(d, 0);
+  apply_forces(d, dt, g);
+  const auto forced = state(d, 0);
+  for (int k = 0; k < 6; ++k) CHECK(forced[k] != start[k]);  // v and w changed (w also by -w x Iw) ...
+  for (int k = 6; k < 13; ++k) CHECK(forced[k] == start[k]);  // ... position and orientation did not
+  CHECK(d.force(0, 2) == 0.0);
+  CHECK(d.torque(0, 0) == 0.0);
+  // Euler's equations in the principal frame (q = 1): I dw/dt = tau - w x I w, with
+  // w x I w = (0.4, 1.5, 3) x (0.4, 3, 10.5) = (6.75, -3, 0.6).
+  CHECK(forced[1] == Approx(0.4 + dt * (0.3 - 6.75) / 1.0));
+  CHECK(forced[3] == Approx(1.5 + dt * (-0.2 + 3.0) / 2.0));
+  CHECK(forced[5] == Approx(3.0 + dt * (0.1 - 0.6) / 3.5));
+  CHECK(forced[4] == Approx(2.0 + dt * (3.0 / 2.0 - 9.81)));
+  move(d, dt);
+  const auto moved = state(d, 0);
+  for (int k = 0; k < 6; ++k) CHECK(moved[k] == forced[k]);
+  CHECK(moved[8] == start[8] + dt * forced[4]);  // z += dt v_z
+  integrate(whole.device(), dt, g);
+  CHECK(state(whole.device(), 0) == moved);  // same operations, same order: bitwise equal
+  CHECK(state(d, 1) == state(whole.device(), 1));
+  CHECK(d.pos(1, 0) == 5.0);  // fixed bodies do not move
 }

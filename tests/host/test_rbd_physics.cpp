@@ -114,3 +114,28 @@ TEST_CASE("a sphere on an incline rolls at 5/7 g sin(theta) or slides at g (sin 
   CHECK(incline_acceleration(theta, mu) == Approx(g * (std::sin(theta) - mu * std::cos(theta))).epsilon(0.03));
   CHECK(incline_acceleration(theta, 0.0) == Approx(g * std::sin(theta)).epsilon(0.03));
 }
+
+TEST_CASE("a body spinning freely in a World keeps its angular momentum (gyroscopic term)", "[rbd_physics]") {
+  BodySet<double> set;
+  set.add_sphere({0, 0, 0}, 1.0, 1.0, {1.0, 2.0, 3.5});
+  set[0].w = {0.2, 0.3, 3.0};
+  SolverSettings<double> s;
+  s.dt = 1e-3;
+  s.gravity[2] = 0;
+  World<device::cpu, double> w(set, s);
+  auto momentum = [&] {  // L = R I R^T w, read from the World's bodies
+    auto& b = w.bodies();
+    const math::Matrix3x3<double> R(b.R(0, 0), b.R(0, 1), b.R(0, 2), b.R(0, 3), b.R(0, 4), b.R(0, 5), b.R(0, 6),
+                                    b.R(0, 7), b.R(0, 8));
+    const math::Matrix3x3<double> I(b.inertia(0, 0), 0, 0, 0, b.inertia(0, 4), 0, 0, 0, b.inertia(0, 8));
+    return math::Vector3<double>(math::rotate_tensor(R, I) * math::Vector3<double>(b.w(0, 0), b.w(0, 1), b.w(0, 2)));
+  };
+  const math::Vector3<double> L0 = momentum();
+  const math::Vector3<double> w0(set[0].w[0], set[0].w[1], set[0].w[2]);
+  for (int i = 0; i < 2000; ++i) REQUIRE(w.step().solver.contacts == 0);
+  const math::Vector3<double> L = momentum();
+  CHECK(math::norm(math::Vector3<double>(L - L0)) < 5e-3 * math::norm(L0));
+  w.syncHost();
+  const math::Vector3<double> w1(set[0].w[0], set[0].w[1], set[0].w[2]);
+  CHECK(math::norm(math::Vector3<double>(w1 - w0)) > 0.05);  // it precesses
+}

@@ -39,9 +39,7 @@ template <class Device, class T, class Model>
 void prepare_solve(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, const SolverSettings<T>& s) {
   CollisionDetection<Device, T> cd;
   cd.detect(bodies, contacts, s.margin, s.friction);
-  using BV = typename Bodies<Device, T>::View;
-  const math::Vector3<T> g(s.gravity[0], s.gravity[1], s.gravity[2]);
-  launch(Device{}, bodies.size(), rbd::detail::ApplyExternal<BV, T>{bodies.view(), s.dt, g});
+  apply_forces(bodies, s.dt, math::Vector3<T>(s.gravity[0], s.gravity[1], s.gravity[2]));
 }
 
 // Velocities (v then w, body-major) of a host store.

@@ -13,6 +13,7 @@
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/contact_grouping.hpp"
 #include "gpusolve/rbd/contact_kernels.hpp"
+#include "gpusolve/rbd/scratch.hpp"
 
 namespace gpusolve::rbd {
 
@@ -38,14 +39,6 @@ namespace detail {
 
 template <class Device, class T>
 using Vec3Store = VectorD2<T, device_is<Device>>;
-
-// Resizes an n x 3 store when it is too small; returns whether it did (zeroed then).
-template <class S>
-bool grow3(S& s, std::size_t n) {
-  if (s.size_x() >= n && s.size_y() == 3) return false;
-  s.resize(n, 3);
-  return true;
-}
 
 template <class T>
 struct CacheSink {
@@ -121,8 +114,8 @@ class CacheStore {
   template <class BV, class CV>
   void prepare(const BV& b, const CV& c, stream_t stream) {
     grouping_.build(b, c, stream);
-    grow3(dv_, 2 * c.size());
-    grow3(dw_, 2 * c.size());
+    ensure_size(dv_, 2 * c.size(), 3);
+    ensure_size(dw_, 2 * c.size(), 3);
     entries_ = 2 * c.size();
   }
   CacheSink<T> sink() { return CacheSink<T>{dv_.view(), dw_.view(), grouping_.view().slot}; }
@@ -168,8 +161,8 @@ class Accumulator<Atomic, Device, T> {
  public:
   template <class BV, class CV>
   void prepare(const BV& b, const CV&, stream_t stream = stream_t{}) {
-    if (!detail::grow3(dv_, b.size())) dv_.fill(T(0), stream);  // a new store is zero already
-    if (!detail::grow3(dw_, b.size())) dw_.fill(T(0), stream);
+    if (!detail::ensure_size(dv_, b.size(), 3)) dv_.fill(T(0), stream);  // a new store is zero already
+    if (!detail::ensure_size(dw_, b.size(), 3)) dw_.fill(T(0), stream);
   }
   detail::AtomicSink<T> sink() { return detail::AtomicSink<T>{dv_.view(), dw_.view()}; }
   template <class BV>

@@ -11,6 +11,7 @@
 #include "gpusolve/container/vector_d2_offset.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
+#include "gpusolve/rbd/logical_view.hpp"
 #include "gpusolve/rbd/shapes.hpp"
 
 namespace gpusolve::rbd {
@@ -103,36 +104,28 @@ struct Bodies {
   static_assert(std::is_trivially_copyable_v<View>);
 
   View view() {
+    using detail::logical;
     return View{n_,
-                logical(status.view()),
-                logical(shape.view()),
-                logical(shape_param.view()),
-                logical(inv_mass.view()),
-                logical(inertia.view()),
-                logical(inv_inertia_body.view()),
-                logical(inv_inertia.view()),
-                logical(pos.view()),
-                logical(q.view()),
-                logical(R.view()),
-                logical(v.view()),
-                logical(w.view()),
-                logical(force.view()),
-                logical(torque.view()),
-                logical(radius.view()),
-                logical(aabb.view()),
-                logical(motion.view())};
+                logical(status.view(), n_),
+                logical(shape.view(), n_),
+                logical(shape_param.view(), n_),
+                logical(inv_mass.view(), n_),
+                logical(inertia.view(), n_),
+                logical(inv_inertia_body.view(), n_),
+                logical(inv_inertia.view(), n_),
+                logical(pos.view(), n_),
+                logical(q.view(), n_),
+                logical(R.view(), n_),
+                logical(v.view(), n_),
+                logical(w.view(), n_),
+                logical(force.view(), n_),
+                logical(torque.view(), n_),
+                logical(radius.view(), n_),
+                logical(aabb.view(), n_),
+                logical(motion.view(), n_)};
   }
 
  private:
-  template <class V>
-  V logical(V v) const {
-    if constexpr (std::is_same_v<V, VecD2View>)
-      v.nx = n_;
-    else
-      v.n = n_;
-    return v;
-  }
-
   std::size_t n_ = 0;
   std::size_t capacity_ = 0;
 };

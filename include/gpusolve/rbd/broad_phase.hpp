@@ -17,6 +17,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/bodies.hpp"
+#include "gpusolve/rbd/scratch.hpp"
 #include "gpusolve/rbd/thrust_backend.hpp"
 
 namespace gpusolve::rbd {
@@ -136,12 +137,6 @@ struct WritePairs {
     walk(i, [&](std::uint32_t j) { pairs[o++] = pair_key(std::uint32_t(i), j); });
   }
 };
-
-// Grows a scratch vector to at least n elements (contents lost on growth).
-template <class V>
-void ensure_size(V& v, std::size_t n) {
-  if (v.size_x() < n) v.resize(n + n / 2);
-}
 
 }  // namespace detail
 

@@ -20,6 +20,7 @@
 #include "gpusolve/rbd/broad_phase.hpp"
 #include "gpusolve/rbd/contacts.hpp"
 #include "gpusolve/rbd/narrow_phase.hpp"
+#include "gpusolve/rbd/scratch.hpp"
 #include "gpusolve/rbd/thrust_backend.hpp"
 
 namespace gpusolve::rbd {

@@ -13,6 +13,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/reduce.hpp"
+#include "gpusolve/rbd/scratch.hpp"
 #include "gpusolve/rbd/thrust_backend.hpp"
 
 namespace gpusolve::rbd {
@@ -72,8 +73,8 @@ class ContactGrouping {
   template <class BV, class CV>
   void build(const BV& b, const CV& c, stream_t stream = stream_t{}) {
     const std::size_t entries = 2 * c.size(), nb = b.size();
-    grow(key_, entries), grow(sorted_, entries), grow(slot_, entries), grow(rank_, entries);
-    grow(start_, nb + 1);
+    for (U32* v : {&key_, &sorted_, &slot_, &rank_}) detail::ensure_size(*v, entries);
+    detail::ensure_size(start_, nb + 1);
     bodies_ = nb;
     const Device dev{};
     launch(dev, entries, detail::GroupKeys<BV, CV, U32View>{b, c, key_.view(), sorted_.view()}, stream);
@@ -99,11 +100,6 @@ class ContactGrouping {
   }
 
  private:
-  // Storage only grows: a step with fewer contacts reuses it.
-  static void grow(U32& v, std::size_t n) {
-    if (v.size_x() < n) v.resize(n);
-  }
-
   U32 key_, sorted_, slot_, rank_, start_;
   std::size_t bodies_ = 0, max_segment_ = 0;
 };

@@ -12,6 +12,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/rbd/contact_model.hpp"
+#include "gpusolve/rbd/logical_view.hpp"
 
 namespace gpusolve::rbd {
 
@@ -135,23 +136,22 @@ struct Contacts {
   static_assert(std::is_trivially_copyable_v<View>);
 
   View view() {
-    return View{n_,           logical(a.view()),  logical(b.view()),    logical(n.view()),
-                logical(t.view()), logical(o.view()), logical(ra.view()), logical(rb.view()),
-                logical(phi0.view()), logical(mu.view()), logical(dinv.view()), logical(x.view())};
+    using detail::logical;
+    return View{n_,
+                logical(a.view(), n_),
+                logical(b.view(), n_),
+                logical(n.view(), n_),
+                logical(t.view(), n_),
+                logical(o.view(), n_),
+                logical(ra.view(), n_),
+                logical(rb.view(), n_),
+                logical(phi0.view(), n_),
+                logical(mu.view(), n_),
+                logical(dinv.view(), n_),
+                logical(x.view(), n_)};
   }
 
  private:
-  // Trims a view of capacity-sized storage to the logical size (empty stays empty).
-  template <class V>
-  V logical(V v) const {
-    if constexpr (std::is_same_v<V, VecD2View>) {
-      if (v.nx != 0) v.nx = n_;
-    } else {
-      if (v.n != 0) v.n = n_;
-    }
-    return v;
-  }
-
   std::size_t n_ = 0;
   std::size_t capacity_ = 0;
 };

@@ -1,5 +1,5 @@
-// Time integration of the bodies (thesis 3.2, 5.1): forces and torques, the
-// linear and angular moves, and the bounding-sphere AABB update.
+// Time integration of the bodies (thesis 3.2, 5.1): the velocity change of
+// forces and torques, the linear and angular moves, the bounding-sphere AABB update.
 #pragma once
 
 #include <cmath>
@@ -13,35 +13,25 @@
 
 namespace gpusolve::rbd {
 
-// Semi-implicit Euler, linear part (thesis MoveLinearKernel):
-// v += dt (f / m + g), then x += dt v; the force is consumed.
+// The velocity change of the step's external forces (semi-implicit Euler, the
+// velocity half of thesis MoveLinearKernel and MoveAngularKernel):
+// v += dt (f / m + g), w += dt R I^-1 R^T (tau - w x (R I R^T w)). The
+// gyroscopic term -w x I w keeps a freely spinning body's angular momentum; it
+// belongs here, with the other velocity-dependent external terms, so that a
+// contact solve after this sees (and constrains) the whole unconstrained
+// velocity v + dt M^-1 f (thesis Eq. 6). Force and torque are consumed.
 template <class View, class T>
-struct MoveLinear {
+struct ApplyForces {
   View b;
   T dt;
   math::Vector3<T> gravity;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     if (!b.moving(i)) return;
     const BodyOffsets<T> off(b);
-    math::Vector3Global<T> v(b.v, off.v3, i), x(b.pos, off.v3, i), f(b.force, off.v3, i);
+    math::Vector3Global<T> v(b.v, off.v3, i), f(b.force, off.v3, i);
     v += dt * (b.inv_mass[i] * f + gravity);
-    x += dt * v;
     f = math::Vector3<T>();
-  }
-};
-
-// Angular part (thesis MoveAngularKernel): w += dt R I^-1 R^T (tau - w x (R I R^T w)),
-// the gyroscopic term keeping a freely spinning body's angular momentum; then q
-// turns by w dt and is renormalised. The torque is consumed.
-template <class View, class T>
-struct MoveAngular {
-  View b;
-  T dt;
-  GPUSOLVE_HD void operator()(std::size_t i) const {
-    if (!b.moving(i)) return;
-    const BodyOffsets<T> off(b);
     math::Vector3Global<T> wg(b.w, off.v3, i), tau(b.torque, off.v3, i);
-    math::QuaternionGlobal<T> q(b.q, off.q4, i);
     const math::Matrix3x3<T> R(math::Matrix3x3Global<T>(b.R, off.m9, i));
     const math::Matrix3x3<T> I = math::rotate_tensor(R, math::Matrix3x3Global<T>(b.inertia, off.m9, i));
     const math::Matrix3x3<T> Iinv(math::Matrix3x3Global<T>(b.inv_inertia, off.m9, i));
@@ -49,8 +39,22 @@ struct MoveAngular {
     const math::Vector3<T> Iw = I * w;
     const math::Vector3<T> rhs = math::Vector3<T>(tau) - w % Iw;
     wg = w + dt * (Iinv * rhs);
-    q = math::integrate_orientation(q, wg, dt);
     tau = math::Vector3<T>();
+  }
+};
+
+// The position half: x += dt v, and q turns by w dt and is renormalised.
+template <class View, class T>
+struct Move {
+  View b;
+  T dt;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    if (!b.moving(i)) return;
+    const BodyOffsets<T> off(b);
+    math::Vector3Global<T> v(b.v, off.v3, i), x(b.pos, off.v3, i), w(b.w, off.v3, i);
+    math::QuaternionGlobal<T> q(b.q, off.q4, i);
+    x += dt * v;
+    q = math::integrate_orientation(q, w, dt);
   }
 };
 
@@ -104,20 +108,33 @@ void update_derived(Device dev, const View& b, std::size_t first, std::size_t la
   if (last > first) launch(dev, last - first, UpdateBody<View, T>{b, first, false}, stream);
 }
 
-// One time step of size dt for every active body on the bodies' backend:
-// external forces (the force and torque fields plus gravity), linear and
-// angular moves, then the derived fields and motion. Fixed and removed bodies
-// do not move. Forces and torques are zero afterwards.
+// The external forces (the force and torque fields plus gravity) of a step of
+// size dt, on the velocities of every active body. Forces and torques are zero
+// afterwards. World::step calls it before the contact solve.
 template <class Device, class T>
-void integrate(Bodies<Device, T>& bodies, T dt, const math::Vector3<T>& gravity,
-               stream_t stream = stream_t{}) {
+void apply_forces(Bodies<Device, T>& bodies, T dt, const math::Vector3<T>& gravity, stream_t stream = stream_t{}) {
   using View = typename Bodies<Device, T>::View;
   const View b = bodies.view();
-  const std::size_t n = b.size();
-  if (n == 0) return;
-  launch(Device{}, n, MoveLinear<View, T>{b, dt, gravity}, stream);
-  launch(Device{}, n, MoveAngular<View, T>{b, dt}, stream);
-  launch(Device{}, n, UpdateBody<View, T>{b, 0, true}, stream);
+  if (b.size() != 0) launch(Device{}, b.size(), ApplyForces<View, T>{b, dt, gravity}, stream);
+}
+
+// Moves every active body by its velocities over dt, then updates the derived
+// fields and motion of all bodies. Fixed and removed bodies do not move.
+// World::step calls it after the contact solve.
+template <class Device, class T>
+void move(Bodies<Device, T>& bodies, T dt, stream_t stream = stream_t{}) {
+  using View = typename Bodies<Device, T>::View;
+  const View b = bodies.view();
+  if (b.size() == 0) return;
+  launch(Device{}, b.size(), Move<View, T>{b, dt}, stream);
+  launch(Device{}, b.size(), UpdateBody<View, T>{b, 0, true}, stream);
+}
+
+// One unconstrained time step (no contacts): apply_forces, then move.
+template <class Device, class T>
+void integrate(Bodies<Device, T>& bodies, T dt, const math::Vector3<T>& gravity, stream_t stream = stream_t{}) {
+  apply_forces(bodies, dt, gravity, stream);
+  move(bodies, dt, stream);
 }
 
 }  // namespace gpusolve::rbd

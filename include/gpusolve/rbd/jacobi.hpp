@@ -14,6 +14,7 @@
 #include "gpusolve/rbd/convergence.hpp"
 #include "gpusolve/rbd/reduce.hpp"
 #include "gpusolve/rbd/relaxation.hpp"
+#include "gpusolve/rbd/scratch.hpp"
 #include "gpusolve/rbd/solver_settings.hpp"
 #include "gpusolve/rbd/solver_stats.hpp"
 
@@ -44,11 +45,8 @@ class JacobiSolver {
     const Device dev{};
     const BV b = bodies.view();
     const CV c = contacts.view();
-    if (rhs_.size_x() < nc) {  // scratch only grows
-      rhs_.resize(nc, Model::rows);
-      residual_.resize(nc);
-    }
-    contacts.x.fill(T(0), stream);
+    detail::ensure_size(rhs_, nc, Model::rows);
+    detail::ensure_size(residual_, nc);
     launch(dev, nc, InverseBlocks<Model, BV, CV, T>{b, c}, stream);  // independent of velocities: once
     acc_.prepare(b, c, stream);
     stats.reduction_passes = acc_.passes();

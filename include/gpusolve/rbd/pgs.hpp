@@ -7,6 +7,7 @@
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/rbd/bodies.hpp"
 #include "gpusolve/rbd/contact_kernels.hpp"
@@ -25,7 +26,7 @@ namespace detail {
 template <class BV, class T>
 struct DirectSink {
   BV b;
-  void add(std::size_t, std::uint32_t body, const math::Vector3<T>& dv, const math::Vector3<T>& dw) const {
+  GPUSOLVE_HD void add(std::size_t, std::uint32_t body, const math::Vector3<T>& dv, const math::Vector3<T>& dw) const {
     for (std::size_t k = 0; k < 3; ++k) b.v(body, k) += dv[k], b.w(body, k) += dw[k];
   }
 };

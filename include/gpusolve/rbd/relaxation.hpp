@@ -8,6 +8,7 @@
 #include "gpusolve/container/vector_view.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
+#include "gpusolve/rbd/scratch.hpp"
 #include "gpusolve/rbd/solver_settings.hpp"
 #include "gpusolve/rbd/solver_stats.hpp"
 
@@ -40,7 +41,7 @@ class VelocitySnapshot {
  public:
   template <class BV>
   void save(const BV& b, stream_t stream = stream_t{}) {
-    if (v_.size_x() < b.size()) v_.resize(b.size(), 3), w_.resize(b.size(), 3);
+    detail::ensure_size(v_, b.size(), 3), detail::ensure_size(w_, b.size(), 3);
     copy(b, false, stream);
   }
   template <class BV>

@@ -25,25 +25,6 @@ namespace gpusolve::rbd {
 
 namespace detail {
 
-// The external part of the step's velocity, v += dt (f/m + g), w += dt I^-1 tau,
-// applied before the solve so that the LCP sees v + dt M^-1 f_ext (thesis Eq. 6);
-// forces and torques are consumed. integrate() then only moves (gravity 0).
-template <class BV, class T>
-struct ApplyExternal {
-  BV b;
-  T dt;
-  math::Vector3<T> g;
-  GPUSOLVE_HD void operator()(std::size_t k) const {
-    if (!b.moving(k)) return;
-    const math::Vector3<T> dv = dt * (b.inv_mass[k] * load3<T>(b.force, k) + g);
-    const math::Vector3<T> dw = dt * (load9<T>(b.inv_inertia, k) * load3<T>(b.torque, k));
-    for (std::size_t c = 0; c < 3; ++c) {
-      b.v(k, c) += dv[c], b.w(k, c) += dw[c];
-      b.force(k, c) = 0, b.torque(k, c) = 0;
-    }
-  }
-};
-
 // Waits until the backend finished the work queued on `stream` (timing per phase).
 inline void finish(device::cpu, stream_t) {}
 inline void finish(device::gpu, stream_t stream) {
@@ -87,16 +68,16 @@ class World {
     detection_.detect(bodies, contacts_, s.margin, s.friction, stream_);
     detail::finish(Device{}, stream_);
     const auto t1 = Clock::now();
-    using BV = typename Bodies<Device, T>::View;
-    const BV b = bodies.view();
-    launch(Device{}, b.size(), detail::ApplyExternal<BV, T>{b, s.dt, g}, stream_);
+    apply_forces(bodies, s.dt, g, stream_);  // the LCP sees v + dt M^-1 f_ext (thesis Eq. 6)
     st.solver = solver_.solve(bodies, contacts_, s, stream_);
     detail::finish(Device{}, stream_);
     const auto t2 = Clock::now();
-    integrate(bodies, s.dt, math::Vector3<T>(), stream_);
+    move(bodies, s.dt, stream_);
     detail::finish(Device{}, stream_);
     const auto t3 = Clock::now();
 
+    using BV = typename Bodies<Device, T>::View;
+    const BV b = bodies.view();
     st.max_penetration = max_relative_penetration<Device, T>(b, contacts_.view(), stream_);
     st.kinetic_energy = kinetic_energy<Device, BV, T>(b, stream_);
     st.potential_energy = potential_energy<Device, BV, T>(b, g, stream_);

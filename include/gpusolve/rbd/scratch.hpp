@@ -1,0 +1,26 @@
+// Scratch storage of the rbd kernels: vectors that only grow, reused step to step.
+#pragma once
+
+#include <cstddef>
+
+namespace gpusolve::rbd::detail {
+
+// Grows a VectorD1 to at least n elements, by half again so that slowly growing
+// sizes do not reallocate every step. Returns whether it reallocated (contents
+// are then lost and zero).
+template <class V>
+bool ensure_size(V& v, std::size_t n) {
+  if (v.size_x() >= n) return false;
+  v.resize(n + n / 2);
+  return true;
+}
+
+// The same for a VectorD2 of n x rows.
+template <class V>
+bool ensure_size(V& v, std::size_t n, std::size_t rows) {
+  if (v.size_x() >= n && v.size_y() == rows) return false;
+  v.resize(n + n / 2, rows);
+  return true;
+}
+
+}  // namespace gpusolve::rbd::detail
