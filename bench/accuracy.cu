@@ -70,6 +70,7 @@ std::vector<Point> curve(const Options& opt, double omega, int repeats, Solve&& 
     s.omega = T(omega);
     s.tolerance = std::numeric_limits<T>::denorm_min();  // run all k iterations
     s.divergence_checks = 0;                              // only NaN/inf stops a solve
+    s.max_retries = 0;  // time the iterations, not restarts at a lower omega
     s.max_iterations = k;
     s.check_every = k;
     std::vector<double> secs;

@@ -113,6 +113,7 @@ Row bench_strategy(rbd::Bodies<Dev, T>& bodies, rbd::Contacts<Dev, T, Model>& co
     s.tolerance = std::numeric_limits<T>::denorm_min();  // stops only on an exactly zero residual
     s.omega = T(opt.omega);
     s.divergence_checks = 0;
+    s.max_retries = 0;  // time the iterations, not restarts at a lower omega
     s.max_iterations = n;
     s.check_every = check_every;
     restore();

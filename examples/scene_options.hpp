@@ -38,6 +38,7 @@ struct Options {
   std::optional<double> dt, tolerance, friction;
   double omega = 0.5;
   double margin = 0.1;       // contact distance: pairs closer than this take part in the solve
+  long max_retries = 3;      // restarts of a diverging solve at half the omega
   std::string accumulation;  // empty: the solver's default strategy
   std::uint64_t seed = 1;
   std::string out;           // empty: out/<scene>
@@ -89,6 +90,8 @@ inline std::string usage(const std::string& accumulations, const std::string& de
        "  --scale N             number of spheres [scene]\n"
        "  --dt X                time step in seconds [scene]\n"
        "  --omega X             relaxation of the Jacobi update, in (0, 2); thesis: 0.2 to 0.7 [0.5]\n"
+       "  --max-retries N       a diverging solve restarts from its start at half the omega,\n"
+       "                        up to N times; 0 reports the divergence at once [3]\n"
        "  --margin X            pairs whose gap is below X (m) become contacts; a falling sphere\n"
        "                        moves up to ~0.07 per step here, so less lets it sink in first [0.1]\n"
        "  --tolerance X         residual at which the solver stops iterating [scene]\n"
@@ -181,6 +184,7 @@ inline Options parse_options(int argc, const char* const* argv, const std::vecto
       o.omega = parse_double(a, v, 0.0, true);
       if (o.omega >= 2.0) throw UsageError("--omega: must be in (0, 2), got '" + v + "'");
     }
+    else if (a == "--max-retries") o.max_retries = parse_long(a, next(), 0);
     else if (a == "--margin") o.margin = parse_double(a, next(), 0.0, false);
     else if (a == "--tolerance") o.tolerance = parse_double(a, next(), 0.0, true);
     else if (a == "--max-iterations") o.max_iterations = parse_long(a, next(), 1);

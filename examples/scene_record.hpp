@@ -14,13 +14,16 @@
 
 namespace scenes {
 
-// stats.csv columns. status: 0 converged, 1 stopped at max_iterations, 2 diverged.
+// stats.csv columns. status: 0 converged, 1 stopped at max_iterations, 2 diverged
+// (after all retries); iterations: all attempts of the step; retries: restarts at
+// a lower omega after a diverging attempt, omega: the one the step ended with.
 // max_penetration is relative to the smaller radius of the pair; energies in J
 // (potential zero at z = 0); t_* are wall seconds of the phases, t_step of the
 // whole step including the scene's edits and the host/device synchronisation.
 inline const std::vector<std::string>& stats_columns() {
   static const std::vector<std::string> c{
-      "step", "time", "bodies", "contacts", "iterations", "residual", "status", "max_penetration",
+      "step", "time", "bodies", "contacts", "iterations", "residual", "status", "retries", "omega",
+      "max_penetration",
       "kinetic", "potential", "energy", "t_detection", "t_solve", "t_integration", "t_step"};
   return c;
 }
@@ -34,8 +37,9 @@ class RunRecord {
   void add(long step, double time, std::size_t bodies, const gpusolve::rbd::StepStats<T>& s, double t_step) {
     const auto& v = s.solver;
     if (step % every_ == 0)
-      csv_.row({double(step), time, double(bodies), double(v.contacts), double(v.iterations), double(v.residual()),
-                double(static_cast<int>(v.status)), double(s.max_penetration), double(s.kinetic_energy),
+      csv_.row({double(step), time, double(bodies), double(v.contacts), double(v.total_iterations),
+                double(v.residual()), double(static_cast<int>(v.status)), double(v.retries), double(v.omega),
+                double(s.max_penetration), double(s.kinetic_energy),
                 double(s.potential_energy), double(s.energy()), s.time_detection, s.time_solve,
                 s.time_integration, t_step});
     ++steps_;
@@ -43,8 +47,9 @@ class RunRecord {
     const double pen = s.max_penetration;
     max_pen_ = std::isfinite(pen) ? std::max(max_pen_, pen) : pen;
     if (std::isfinite(max_pen_) && pen == max_pen_) max_pen_step_ = step;
-    sum_it_ += v.iterations;
-    max_it_ = std::max<std::size_t>(max_it_, v.iterations);
+    sum_it_ += v.total_iterations;
+    max_it_ = std::max<std::size_t>(max_it_, v.total_iterations);
+    retried_ += v.retries > 0;
     max_contacts_ = std::max(max_contacts_, v.contacts);
     last_contacts_ = v.contacts;
     diverged_ += v.status == gpusolve::rbd::SolverStatus::diverged;
@@ -79,6 +84,7 @@ class RunRecord {
         .field("margin", o.margin)
         .field("tolerance", *o.tolerance)
         .field("max_iterations", *o.max_iterations)
+        .field("max_retries", o.max_retries)
         .field("check_every", *o.check_every)
         .field("friction", *o.friction)
         .field("model", model)
@@ -95,6 +101,7 @@ class RunRecord {
         .field("mean_iterations", sum_it_ / n)
         .field("max_iterations", max_it_)
         .field("unconverged_steps", unconverged_)
+        .field("retried_steps", retried_)
         .field("divergence_events", diverged_)
         .field("first_energy", first_energy_)
         .field("last_energy", last_energy_)
@@ -110,7 +117,7 @@ class RunRecord {
  private:
   gpusolve::rbd::io::CsvWriter csv_;
   long every_;
-  long steps_ = 0, diverged_ = 0, unconverged_ = 0, max_pen_step_ = -1;
+  long steps_ = 0, diverged_ = 0, unconverged_ = 0, retried_ = 0, max_pen_step_ = -1;
   double max_pen_ = 0, sum_it_ = 0, sum_time_ = 0, sum_detection_ = 0, sum_solve_ = 0, sum_integration_ = 0;
   double first_energy_ = 0, last_energy_ = 0;
   std::size_t max_it_ = 0, max_contacts_ = 0, last_contacts_ = 0, last_bodies_ = 0;

@@ -100,6 +100,7 @@ int run(const Options& o, AnyScene& scene, const std::string& device_name) {
   s.check_every = static_cast<std::size_t>(*o.check_every);
   s.friction = real(*o.friction);
   s.margin = real(o.margin);
+  s.max_retries = static_cast<std::size_t>(o.max_retries);
   rbd::World<Device, real, Model, Strategy> world(set, s);
 
   const bool gpu = std::is_same_v<Device, gpusolve::device::gpu>;
