@@ -146,7 +146,8 @@ Row bench_strategy(rbd::Bodies<Dev, T>& bodies, rbd::Contacts<Dev, T, Model>& co
   rbd::Accumulator<Strategy, Dev, T> acc;
   VectorD2<T, device_is<Dev>> rhs(nc, Model::rows);
   VectorD1<T, device_is<Dev>> unused_residual(nc);
-  const T omega = T(opt.omega), inv_dt = T(1) / rbd::SolverSettings<T>{}.dt;
+  const rbd::SolverSettings<T> defaults;
+  const T omega = T(opt.omega), inv_dt = T(1) / defaults.dt;
   const auto fresh = [&] {
     restore();
     contacts.x.fill(T(0), stream);
@@ -159,7 +160,8 @@ Row bench_strategy(rbd::Bodies<Dev, T>& bodies, rbd::Contacts<Dev, T, Model>& co
   cudaGraphExec_t exec;
   GPUSOLVE_CUDA_CHECK(cudaStreamBeginCapture(stream, cudaStreamCaptureModeThreadLocal));
   for (std::size_t it = 0; it < n2; ++it) {
-    launch(Dev{}, nc, rbd::CalcNextPhi<Model, BV, CV, T>{bodies.view(), contacts.view(), rhs.view(), inv_dt}, stream);
+    launch(Dev{}, nc, rbd::CalcNextPhi<Model, BV, CV, T>{bodies.view(), contacts.view(), rhs.view(), inv_dt,
+                                                             defaults.correction}, stream);
     launch(Dev{}, nc,
            rbd::ResolveCollisions<Model, BV, CV, decltype(acc.sink()), T>{
                bodies.view(), contacts.view(), rhs.view(), acc.sink(), omega, false, unused_residual.view()},
