@@ -336,9 +336,8 @@ def _run(cmd, tool_dir):
     return proc.stdout
 
 
-def audit(binary, arch="sm_90", ptxas_log=None):
-    """Audit a binary: {readable_name: KernelStats} for every function with
-    `arch` machine code. Raises AuditError with a clear message on failure."""
+def _cuobjdump_tool(binary):
+    """The cuobjdump to run on `binary`, after checking the file can be read."""
     if not os.path.isfile(binary):
         raise AuditError("no such file: %s" % binary)
     if not os.access(binary, os.R_OK):
@@ -348,6 +347,13 @@ def audit(binary, arch="sm_90", ptxas_log=None):
         raise AuditError("cuobjdump not found: install the CUDA toolkit (or "
                          "`pip install nvidia-cuda-cuobjdump nvidia-cuda-nvdisasm`), "
                          "put it on PATH, or set CUOBJDUMP")
+    return tool
+
+
+def audit(binary, arch="sm_90", ptxas_log=None):
+    """Audit a binary: {readable_name: KernelStats} for every function with
+    `arch` machine code. Raises AuditError with a clear message on failure."""
+    tool = _cuobjdump_tool(binary)
     ptxas_text = None
     if ptxas_log:
         try:
@@ -362,6 +368,23 @@ def audit(binary, arch="sm_90", ptxas_log=None):
     if not stats:
         raise AuditError("%s holds no %s machine code (SASS)" % (binary, arch))
     return stats
+
+
+def sass_listing(binary, arch="sm_90"):
+    """{mangled name: [(base opcode, operands)]} in program order, NOP padding
+    left out: for claims about the order of instructions, which counts lose."""
+    tool = _cuobjdump_tool(binary)
+    text = _run([tool, "-arch", arch, "-sass", binary], os.path.dirname(tool))
+    listing, current = {}, None
+    for line in _arch_filter(text, arch):
+        m = _FUNC_CUOBJDUMP_RE.match(line)
+        if m:
+            current = listing.setdefault(m.group(1), [])
+            continue
+        m = _INSN_RE.match(line)
+        if m and current is not None and not m.group(1).startswith("NOP"):
+            current.append((m.group(1).split(".", 1)[0], m.group(2)))
+    return listing
 
 
 def select(stats, regex):

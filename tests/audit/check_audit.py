@@ -82,24 +82,6 @@ PARAM_BASE = 0x210  # sm_90: kernel parameters start here in constant bank 0
 USER_CONSTANT_BANK = 3  # sm_90: __constant__ variables
 
 
-def sass_listing(binary, arch):
-    """{mangled name: [(base opcode, operands)]} in program order."""
-    tool = audit.find_tool("cuobjdump", "CUOBJDUMP")
-    if tool is None:
-        raise audit.AuditError("cuobjdump not found (bash tools/install_deps.sh)")
-    text = audit._run([tool, "-arch", arch, "-sass", binary], os.path.dirname(tool))
-    listing, current = {}, None
-    for line in text.splitlines():
-        m = audit._FUNC_CUOBJDUMP_RE.match(line)
-        if m:
-            current = listing.setdefault(m.group(1), [])
-            continue
-        m = audit._INSN_RE.match(line)
-        if m and current is not None and not m.group(1).startswith("NOP"):
-            current.append((m.group(1).split(".", 1)[0], m.group(2)))
-    return listing
-
-
 def loads_after_first_store(insns):
     """Global loads issued after the kernel's first global store: the thesis's
     write-through interleaving (Listing 10) versus all loads first (Listing 9)."""
@@ -257,7 +239,7 @@ def main(argv=None):
     args = p.parse_args(argv)
     try:
         stats = audit.audit(args.binary, args.arch, args.ptxas_log)
-        listing = sass_listing(args.binary, args.arch)
+        listing = audit.sass_listing(args.binary, args.arch)
         if args.markdown:
             print(markdown(stats, listing))
         c = check(stats, listing)
