@@ -23,7 +23,10 @@ struct descriptor_of<C, std::void_t<typename C::view_type>> {
   using type = typename C::view_type;
 };
 
-// One __constant__ slot per (descriptor, tag) pair.
+// One __constant__ slot per (descriptor, tag) pair. nvcc accepts only constant
+// initialisation here: a descriptor type whose members are either all
+// default-initialised in class or none of them (trivial) works; one that mixes
+// the two fails to compile with "dynamic initialization is not supported".
 template <class V, class Tag>
 __constant__ V constant_slot;
 
