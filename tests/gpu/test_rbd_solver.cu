@@ -104,6 +104,31 @@ TEST_CASE("GPU World: resting sphere and rolling on an incline match the CPU bac
   }
 }
 
+TEST_CASE("GPU warm-started World steps match the CPU backend", "[rbd_solver][gpu]") {
+  auto s = settings();  // 300 iterations every step: both backends do the same work
+  s.warm_start = 0.8f;
+  auto run = [&](auto device) {
+    using Device = decltype(device);
+    auto set = pile<float>(3, 3);
+    World<Device, float, PyramidFriction, Gather> w(set, s);
+    for (int i = 0; i < 3; ++i) REQUIRE(w.step().solver.status != SolverStatus::diverged);
+    Result r;
+    Bodies<device::cpu, float> host;
+    host = w.bodies();
+    r.v = velocities(host);
+    VectorD2<float, device_is<device::cpu>> x;
+    x = w.contacts().x;
+    for (std::size_t i = 0; i < w.contacts().size(); ++i)
+      for (std::size_t k = 0; k < 3; ++k) r.x.push_back(x(i, k));
+    return r;
+  };
+  const Result cpu = run(device::cpu{});
+  const Result gpu = run(device::gpu{});
+  REQUIRE(cpu.x.size() > 150);
+  CHECK(max_abs_diff(gpu.v, cpu.v) < vel_tol);
+  CHECK(max_abs_diff(gpu.x, cpu.x) < vel_tol);
+}
+
 TEST_CASE("GPU Jacobi reports divergence for omega = 1 on a dense pile", "[rbd_solver][gpu]") {
   auto s = settings();
   s.omega = 1.0f;

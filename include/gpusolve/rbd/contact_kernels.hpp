@@ -51,6 +51,26 @@ GPUSOLVE_HD math::Vector3<T> point_velocity(const math::Vector3<T>& v, const mat
   return v + w % r;
 }
 
+// The velocity changes of a contact's two bodies caused by impulse p (world
+// coordinates) acting on a and -p on b at the contact's points.
+template <class T>
+struct BodyResponse {
+  std::uint32_t ia, ib;
+  math::Vector3<T> ra, rb, dva, dwa, dvb, dwb;
+  template <class BV, class CV>
+  GPUSOLVE_HD BodyResponse(const BV& b, const CV& c, std::size_t i, const math::Vector3<T>& p)
+      : ia(c.a[i]), ib(c.b[i]), ra(load3<T>(c.ra, i)), rb(load3<T>(c.rb, i)) {
+    dva = b.inv_mass[ia] * p, dwa = load9<T>(b.inv_inertia, ia) * (ra % p);
+    dvb = -(b.inv_mass[ib] * p), dwb = -(load9<T>(b.inv_inertia, ib) * (rb % p));
+  }
+  // Hands the changes of the moving bodies to the sink (entry 2i for a, 2i + 1 for b).
+  template <class BV, class Sink>
+  GPUSOLVE_HD void send(const BV& b, const Sink& sink, std::size_t i) const {
+    if (b.moving(ia)) sink.add(2 * i, ia, dva, dwa);
+    if (b.moving(ib)) sink.add(2 * i + 1, ib, dvb, dwb);
+  }
+};
+
 }  // namespace detail
 
 // The contact's own diagonal block W = Q^T (K_a + K_b) Q with, per body,
@@ -150,15 +170,11 @@ struct ResolveCollisions {
       dx[r] = x[r] - c.x(i, r);
       c.x(i, r) = x[r];
     }
-    const math::Vector3<T> p = f.world(dx);
-    const std::uint32_t ia = c.a[i], ib = c.b[i];
-    const math::Vector3<T> ra = detail::load3<T>(c.ra, i), rb = detail::load3<T>(c.rb, i);
-    const math::Vector3<T> dva = b.inv_mass[ia] * p, dwa = detail::load9<T>(b.inv_inertia, ia) * (ra % p);
-    const math::Vector3<T> dvb = -(b.inv_mass[ib] * p), dwb = -(detail::load9<T>(b.inv_inertia, ib) * (rb % p));
-    if (b.moving(ia)) sink.add(2 * i, ia, dva, dwa);
-    if (b.moving(ib)) sink.add(2 * i + 1, ib, dvb, dwb);
+    const detail::BodyResponse<T> d(b, c, i, f.world(dx));
+    d.send(b, sink, i);
     if (measure) {
-      const math::Vector3<T> du = detail::point_velocity(dva, dwa, ra) - detail::point_velocity(dvb, dwb, rb);
+      const math::Vector3<T> du =
+          detail::point_velocity(d.dva, d.dwa, d.ra) - detail::point_velocity(d.dvb, d.dwb, d.rb);
       T m = 0;
       bool finite = true;
       for (std::size_t r = 0; r < R; ++r) {
@@ -168,6 +184,22 @@ struct ResolveCollisions {
       }
       residual[i] = finite ? m : std::numeric_limits<T>::infinity();
     }
+  }
+};
+
+// ApplyImpulses: the body velocity changes of the impulses already in c.x
+// (J^T x through the same sink as ResolveCollisions), so that velocities and
+// impulses agree before a solve that starts from a nonzero x (warm start).
+template <class Model, class BV, class CV, class Sink, class T>
+struct ApplyImpulses {
+  BV b;
+  CV c;
+  Sink sink;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    T x[Model::rows];
+    for (std::size_t r = 0; r < Model::rows; ++r) x[r] = c.x(i, r);
+    const detail::Frame<T, Model, CV> f(c, i);
+    detail::BodyResponse<T>(b, c, i, f.world(x)).send(b, sink, i);
   }
 };
 

@@ -23,9 +23,15 @@ namespace gpusolve::rbd {
 // Solves the contact LCP of one time step for the bodies' velocities. On entry
 // the velocities include the step's external forces (v + dt M^-1 f); on exit
 // they are the constrained velocities and contacts.x holds each contact's
-// impulse (normal, t, o), starting from zero. A diverging solve is retried at a
-// smaller omega (relaxation.hpp, SolverSettings::max_retries). Scratch storage
-// is kept between calls. Strategy: UpdateCache, Atomic or Gather (accumulation.hpp).
+// impulse (normal, t, o). The iteration starts from zero impulses, or with
+// `from_x` from the admissible impulses in contacts.x (warm start, warm_start.hpp):
+// their velocity change J^T x is applied first, so velocities and impulses agree.
+// A diverging solve is retried at a smaller omega (relaxation.hpp,
+// SolverSettings::max_retries); a retry starts from zero impulses and the
+// velocities the solve began with (before J^T x), i.e. as a cold solve: the
+// starting guess may be what made the first attempt diverge, and the cold start
+// needs no copy of it. Scratch storage is kept between calls. Strategy:
+// UpdateCache, Atomic or Gather (accumulation.hpp).
 template <class Device, class T, class Model, class Strategy = Gather>
 class JacobiSolver {
  public:
@@ -35,7 +41,7 @@ class JacobiSolver {
   using CV = typename ContactStore::View;
 
   SolverStats<T> solve(BodyStore& bodies, ContactStore& contacts, const SolverSettings<T>& s,
-                       stream_t stream = stream_t{}) {
+                       stream_t stream = stream_t{}, bool from_x = false) {
     s.validate();
     SolverStats<T> stats;
     stats.contacts = contacts.size();
@@ -55,7 +61,12 @@ class JacobiSolver {
     const auto rhs = rhs_.view();
     const auto residual = residual_.view();
     auto attempt = [&](T omega, SolverStats<T>& st) {
-      contacts.x.fill(T(0), stream);
+      if (from_x && st.retries == 0) {
+        launch(dev, nc, ApplyImpulses<Model, BV, CV, Sink, T>{b, c, acc_.sink()}, stream);
+        acc_.apply(b, stream);
+      } else {
+        contacts.x.fill(T(0), stream);
+      }
       ConvergenceMonitor<T> monitor(s, st);
       for (std::size_t it = 1;; ++it) {
         launch(dev, nc, CalcNextPhi<Model, BV, CV, T>{b, c, rhs, T(1) / s.dt, s.correction}, stream);

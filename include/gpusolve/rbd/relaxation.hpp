@@ -58,8 +58,8 @@ class VelocitySnapshot {
 };
 
 // Runs attempt(omega, stats), one solve from the bodies' current velocities
-// and zero impulses that sets stats.status, iterations and the residual
-// history. While an attempt diverges and s.max_retries allows, restores the
+// (its starting impulses are its own choice; stats.retries says which attempt
+// it is) that sets stats.status, iterations and the residual history. While an attempt diverges and s.max_retries allows, restores the
 // velocities saved before the first attempt, multiplies omega by
 // s.retry_omega_factor and runs it again. stats then holds the last attempt,
 // the omega it used, the number of retries and the iterations of all attempts.

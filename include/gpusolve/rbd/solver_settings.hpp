@@ -33,6 +33,12 @@ struct SolverSettings {
   T margin = T(0);             // contacts are kept while the gap is below this (m)
   T correction = T(0.2);       // fraction of a penetration removed per step, in (0, 1]
   T friction = T(0.5);         // friction coefficient of every contact (models with friction)
+  // World::step starts each persisting contact (same body pair as in the last
+  // step) from this fraction of its last impulse, in [0, 1] (0: every solve
+  // starts from zero impulses). 0.8: on a boxed pile of 360 spheres (CPU, float,
+  // defaults otherwise) 136 iterations per step on average against 194 cold and
+  // 182 at 1, which overshoots and made solves diverge and retry.
+  T warm_start = T(0.8);
   bool throw_on_divergence = false;  // solve() throws DivergenceError instead of reporting it
 
   // Throws InvalidArgumentError naming the first offending field.
@@ -57,6 +63,7 @@ struct SolverSettings {
     if (!(margin >= 0) || !std::isfinite(margin)) bad("margin", "must be non-negative and finite");
     if (!(correction > 0 && correction <= 1)) bad("correction", "must lie in (0, 1]");
     if (!(friction >= 0) || !std::isfinite(friction)) bad("friction", "must be non-negative and finite");
+    if (!(warm_start >= 0 && warm_start <= 1)) bad("warm_start", "must lie in [0, 1]");
   }
 };
 

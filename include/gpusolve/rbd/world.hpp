@@ -20,6 +20,7 @@
 #include "gpusolve/rbd/jacobi.hpp"
 #include "gpusolve/rbd/solver_settings.hpp"
 #include "gpusolve/rbd/solver_stats.hpp"
+#include "gpusolve/rbd/warm_start.hpp"
 
 namespace gpusolve::rbd {
 
@@ -69,7 +70,13 @@ class World {
     detail::finish(Device{}, stream_);
     const auto t1 = Clock::now();
     apply_forces(bodies, s.dt, g, stream_);  // the LCP sees v + dt M^-1 f_ext (thesis Eq. 6)
-    st.solver = solver_.solve(bodies, contacts_, s, stream_);
+    const bool warm = s.warm_start > 0;
+    if (warm) warm_.carry(contacts_.view(), s.warm_start, stream_);
+    st.solver = solver_.solve(bodies, contacts_, s, stream_, warm);
+    if (warm)
+      warm_.remember(contacts_.view(), stream_);
+    else
+      warm_.forget();
     detail::finish(Device{}, stream_);
     const auto t2 = Clock::now();
     move(bodies, s.dt, stream_);
@@ -102,6 +109,7 @@ class World {
   CollisionDetection<Device, T> detection_;
   Contacts<Device, T, Model> contacts_;
   JacobiSolver<Device, T, Model, Strategy> solver_;
+  WarmStart<Device, T, Model> warm_;  // the previous step's impulses (settings.warm_start)
 };
 
 }  // namespace gpusolve::rbd

@@ -1,0 +1,114 @@
+// Warm starting: each contact that persists from the previous step starts the
+// solve from (a fraction of) the impulse it ended that step with.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include <thrust/binary_search.h>
+#include <thrust/execution_policy.h>
+
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/core/launch.hpp"
+#include "gpusolve/math.hpp"
+#include "gpusolve/rbd/broad_phase.hpp"
+#include "gpusolve/rbd/contact_kernels.hpp"
+#include "gpusolve/rbd/scratch.hpp"
+
+namespace gpusolve::rbd {
+
+namespace detail {
+
+// The impulse a contact keeps for the next step, Model::rows values. With
+// friction the world vector Q x: the tangents are rebuilt from each step's
+// normal (Contacts::View::set_tangents) and may turn, even swap axes, from one
+// step to the next, so the impulse is re-expressed in the new frame rather than
+// copied row by row. Frictionless: the normal impulse itself.
+template <class Model, class CV, class T>
+struct RememberImpulse {
+  CV c;
+  std::uint64_t* keys;
+  VectorD2View<T> p;  // contacts x Model::rows
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    keys[i] = pair_key(c.a[i], c.b[i]);
+    if constexpr (Model::rows == 3) {
+      T x[3] = {c.x(i, 0), c.x(i, 1), c.x(i, 2)};
+      const math::Vector3<T> w = Frame<T, Model, CV>(c, i).world(x);
+      for (std::size_t k = 0; k < 3; ++k) p(i, k) = w[k];
+    } else {
+      p(i, 0) = c.x(i, 0);
+    }
+  }
+};
+
+// x of contact i: factor times the remembered impulse of its body pair in the
+// contact's new frame, projected onto the admissible set (the normal may have
+// turned); zero for a pair that was not in contact. Both steps' contacts are
+// sorted by (a, b), so one binary search per contact finds the pair.
+template <class Model, class CV, class T>
+struct CarryImpulse {
+  CV c;
+  const std::uint64_t* keys;  // previous step's pair keys, sorted
+  std::size_t count;
+  VectorD2View<T> p;
+  T factor;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    constexpr std::size_t R = Model::rows;
+    const std::uint64_t key = pair_key(c.a[i], c.b[i]);
+    const std::uint64_t* k = thrust::lower_bound(thrust::seq, keys, keys + count, key);
+    T x[R] = {};
+    if (k != keys + count && *k == key) {
+      const std::size_t j = std::size_t(k - keys);
+      if constexpr (R == 3) {
+        const Frame<T, Model, CV> f(c, i);
+        const math::Vector3<T> w(p(j, 0), p(j, 1), p(j, 2));
+        for (std::size_t r = 0; r < R; ++r) x[r] = factor * math::dot(f.q[r], w);
+      } else {
+        x[0] = factor * p(j, 0);
+      }
+      T mu = T(0);
+      if constexpr (Model::friction) mu = c.mu[i];
+      Model::project(x, mu);
+    }
+    for (std::size_t r = 0; r < R; ++r) c.x(i, r) = x[r];
+  }
+};
+
+}  // namespace detail
+
+// The previous step's pair keys and impulses, kept on the contacts' backend (no
+// host round trip). carry() after collision detection fills contacts.x; the
+// solver must then start from it (JacobiSolver::solve with from_x). remember()
+// after the solve. Body indices are the pair's identity: a body slot replaced
+// through BodyManager::bodyAdded may inherit its predecessor's impulse for one
+// step, which the solve then corrects like any other starting error.
+template <class Device, class T, class Model>
+class WarmStart {
+ public:
+  template <class CV>
+  void carry(const CV& c, T factor, stream_t stream = stream_t{}) {
+    if (c.size() == 0) return;
+    launch(Device{}, c.size(), detail::CarryImpulse<Model, CV, T>{c, keys_.data(), count_, p_.view(), factor},
+           stream);
+  }
+  template <class CV>
+  void remember(const CV& c, stream_t stream = stream_t{}) {
+    count_ = c.size();
+    if (count_ == 0) return;
+    detail::ensure_size(keys_, count_);
+    detail::ensure_size(p_, count_, Model::rows);
+    launch(Device{}, count_, detail::RememberImpulse<Model, CV, T>{c, keys_.data(), p_.view()}, stream);
+  }
+  // No impulses to carry (warm starting off): the next carry() starts all from zero.
+  void forget() { count_ = 0; }
+  std::size_t remembered() const { return count_; }
+
+ private:
+  VectorD1<std::uint64_t, device_is<Device>> keys_;
+  VectorD2<T, device_is<Device>> p_;
+  std::size_t count_ = 0;
+};
+
+}  // namespace gpusolve::rbd
