@@ -39,6 +39,7 @@ struct Options {
   double omega = 0.5;
   double margin = 0.1;       // contact distance: pairs closer than this take part in the solve
   long max_retries = 3;      // restarts of a diverging solve at half the omega
+  double warm_start = 0.8;   // fraction of last step's impulse a persisting contact starts from
   std::string accumulation;  // empty: the solver's default strategy
   std::uint64_t seed = 1;
   std::string out;           // empty: out/<scene>
@@ -92,6 +93,8 @@ inline std::string usage(const std::string& accumulations, const std::string& de
        "  --omega X             relaxation of the Jacobi update, in (0, 2); thesis: 0.2 to 0.7 [0.5]\n"
        "  --max-retries N       a diverging solve restarts from its start at half the omega,\n"
        "                        up to N times; 0 reports the divergence at once [3]\n"
+       "  --warm-start X        a contact that persists starts its solve from X times its last\n"
+       "                        impulse, in [0, 1]; 0 starts every solve from zero [0.8]\n"
        "  --margin X            pairs whose gap is below X (m) become contacts; a falling sphere\n"
        "                        moves up to ~0.07 per step here, so less lets it sink in first [0.1]\n"
        "  --tolerance X         residual at which the solver stops iterating [scene]\n"
@@ -185,6 +188,11 @@ inline Options parse_options(int argc, const char* const* argv, const std::vecto
       if (o.omega >= 2.0) throw UsageError("--omega: must be in (0, 2), got '" + v + "'");
     }
     else if (a == "--max-retries") o.max_retries = parse_long(a, next(), 0);
+    else if (a == "--warm-start") {
+      const std::string v = next();
+      o.warm_start = parse_double(a, v, 0.0, false);
+      if (o.warm_start > 1.0) throw UsageError("--warm-start: must be in [0, 1], got '" + v + "'");
+    }
     else if (a == "--margin") o.margin = parse_double(a, next(), 0.0, false);
     else if (a == "--tolerance") o.tolerance = parse_double(a, next(), 0.0, true);
     else if (a == "--max-iterations") o.max_iterations = parse_long(a, next(), 1);

@@ -85,6 +85,7 @@ class RunRecord {
         .field("tolerance", *o.tolerance)
         .field("max_iterations", *o.max_iterations)
         .field("max_retries", o.max_retries)
+        .field("warm_start", o.warm_start)
         .field("check_every", *o.check_every)
         .field("friction", *o.friction)
         .field("model", model)

@@ -101,6 +101,7 @@ int run(const Options& o, AnyScene& scene, const std::string& device_name) {
   s.friction = real(*o.friction);
   s.margin = real(o.margin);
   s.max_retries = static_cast<std::size_t>(o.max_retries);
+  s.warm_start = real(o.warm_start);
   rbd::World<Device, real, Model, Strategy> world(set, s);
 
   const bool gpu = std::is_same_v<Device, gpusolve::device::gpu>;

@@ -97,6 +97,8 @@ TEST_CASE("the option parser rejects bad command lines with a message", "[scene]
   CHECK_THROWS_AS(parse({"well", "--dt", "-1"}), UsageError);
   CHECK_THROWS_AS(parse({"well", "--dt", "nan"}), UsageError);
   CHECK_THROWS_AS(parse({"well", "--omega", "2"}), UsageError);
+  CHECK_THROWS_AS(parse({"well", "--warm-start", "1.5"}), UsageError);
+  CHECK_THROWS_AS(parse({"well", "--warm-start", "-0.1"}), UsageError);
   CHECK_THROWS_AS(parse({"well", "--backend", "tpu"}), UsageError);
   CHECK_THROWS_AS(parse({"well", "--accumulation", "magic"}), UsageError);
   CHECK_THROWS_AS(parse({"well", "--frames", "vtk,png"}), UsageError);
