@@ -125,8 +125,13 @@ TEST_CASE("GPU warm-started World steps match the CPU backend", "[rbd_solver][gp
   const Result cpu = run(device::cpu{});
   const Result gpu = run(device::gpu{});
   REQUIRE(cpu.x.size() > 150);
-  CHECK(max_abs_diff(gpu.v, cpu.v) < vel_tol);
-  CHECK(max_abs_diff(gpu.x, cpu.x) < vel_tol);
+  // Each step's solve keeps within vel_tol (above); here three steps chain: the
+  // next detection sees positions moved by the differing velocities and the warm
+  // start carries last step's impulse difference (unit masses: impulse in m/s),
+  // so the bounds add up to 3 vel_tol. Measured on an H100: 1.2e-4 and 2.1e-4.
+  const float steps_tol = 3 * vel_tol;
+  CHECK(max_abs_diff(gpu.v, cpu.v) < steps_tol);
+  CHECK(max_abs_diff(gpu.x, cpu.x) < steps_tol);
 }
 
 TEST_CASE("GPU Jacobi reports divergence for omega = 1 on a dense pile", "[rbd_solver][gpu]") {
