@@ -27,8 +27,8 @@
 #include <omp.h>
 #endif
 
-#include "gpusolve/rbd/jacobi.hpp"
-#include "gpusolve/rbd/pgs.hpp"
+#include "gpusolve/rbd/solvers/jacobi.hpp"
+#include "gpusolve/rbd/solvers/pgs.hpp"
 #include "pile.hpp"
 #include "timing.hpp"
 

@@ -32,7 +32,7 @@
 #include <string>
 #include <vector>
 
-#include "gpusolve/rbd/jacobi.hpp"
+#include "gpusolve/rbd/solvers/jacobi.hpp"
 #include "pile.hpp"
 #include "timing.hpp"
 

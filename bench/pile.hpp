@@ -7,11 +7,11 @@
 #include <cstdint>
 #include <random>
 
-#include "gpusolve/rbd/body_manager.hpp"
-#include "gpusolve/rbd/body_set.hpp"
-#include "gpusolve/rbd/collision_detection.hpp"
-#include "gpusolve/rbd/contact_model.hpp"
-#include "gpusolve/rbd/contacts.hpp"
+#include "gpusolve/rbd/bodies/body_manager.hpp"
+#include "gpusolve/rbd/bodies/body_set.hpp"
+#include "gpusolve/rbd/collision/collision_detection.hpp"
+#include "gpusolve/rbd/contact_models/contact_model.hpp"
+#include "gpusolve/rbd/contacts/contacts.hpp"
 
 namespace gpusolve::bench {
 

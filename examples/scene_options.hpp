@@ -36,7 +36,9 @@ struct Options {
   std::string backend = "auto";
   std::optional<long> steps, scale, max_iterations, check_every;
   std::optional<double> dt, tolerance, friction;
-  double omega = 0.5;
+  double omega = 0;          // 0: the solver's default (Jacobi 0.5, Gauss-Seidel 1)
+  std::string solver = "gauss-seidel";
+  std::string friction_model = "cone";
   double margin = 0.1;       // contact distance: pairs closer than this take part in the solve
   long max_retries = 3;      // restarts of a diverging solve at half the omega
   double warm_start = 0.8;   // fraction of last step's impulse a persisting contact starts from
@@ -90,7 +92,9 @@ inline std::string usage(const std::string& accumulations, const std::string& de
        "                        hopper's warm-up (50%) scale with it\n"
        "  --scale N             number of spheres [scene]\n"
        "  --dt X                time step in seconds [scene]\n"
-       "  --omega X             relaxation of the Jacobi update, in (0, 2); thesis: 0.2 to 0.7 [0.5]\n"
+       "  --solver NAME         gauss-seidel (coloured, parallel) or jacobi (thesis 5.2) [gauss-seidel]\n"
+       "  --omega X             relaxation of the projected update, in [0, 2); 0: the solver's\n"
+       "                        own (Jacobi 0.5, thesis: 0.2 to 0.7; Gauss-Seidel 1) [0]\n"
        "  --max-retries N       a diverging solve restarts from its start at half the omega,\n"
        "                        up to N times; 0 reports the divergence at once [3]\n"
        "  --warm-start X        a contact that persists starts its solve from X times its last\n"
@@ -100,10 +104,11 @@ inline std::string usage(const std::string& accumulations, const std::string& de
        "  --tolerance X         residual at which the solver stops iterating [scene]\n"
        "  --max-iterations N    iterations per time step at most [scene]\n"
        "  --check-every N       residual checked every N iterations [scene]\n"
-       "  --accumulation NAME   how contact updates are summed per body: "
+       "  --accumulation NAME   Jacobi: how contact updates are summed per body: "
     << accumulations
     << "\n"
        "  --friction MU         Coulomb friction coefficient; 0 selects the frictionless model [scene]\n"
+       "  --friction-model M    cone (isotropic) or pyramid (thesis Eq. 7) [cone]\n"
        "  --seed N              seed of the random placement [1]\n"
        "  --out DIR             output folder [out/SCENE]\n"
        "  --csv-every N         a row of stats.csv every N steps [1]\n"
@@ -184,8 +189,8 @@ inline Options parse_options(int argc, const char* const* argv, const std::vecto
     else if (a == "--dt") o.dt = parse_double(a, next(), 0.0, true);
     else if (a == "--omega") {
       const std::string v = next();
-      o.omega = parse_double(a, v, 0.0, true);
-      if (o.omega >= 2.0) throw UsageError("--omega: must be in (0, 2), got '" + v + "'");
+      o.omega = parse_double(a, v, 0.0, false);
+      if (o.omega >= 2.0) throw UsageError("--omega: must be in [0, 2), got '" + v + "'");
     }
     else if (a == "--max-retries") o.max_retries = parse_long(a, next(), 0);
     else if (a == "--warm-start") {
@@ -199,6 +204,8 @@ inline Options parse_options(int argc, const char* const* argv, const std::vecto
     else if (a == "--check-every") o.check_every = parse_long(a, next(), 1);
     else if (a == "--accumulation") o.accumulation = one_of(a, next(), accumulations);
     else if (a == "--friction") o.friction = parse_double(a, next(), 0.0, false);
+    else if (a == "--friction-model") o.friction_model = one_of(a, next(), {"cone", "pyramid"});
+    else if (a == "--solver") o.solver = one_of(a, next(), {"gauss-seidel", "jacobi"});
     else if (a == "--seed") o.seed = static_cast<std::uint64_t>(parse_long(a, next(), 0));
     else if (a == "--out") {
       o.out = next();

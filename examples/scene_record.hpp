@@ -9,7 +9,7 @@
 
 #include "gpusolve/rbd/io/csv_writer.hpp"
 #include "gpusolve/rbd/io/json_writer.hpp"
-#include "gpusolve/rbd/solver_stats.hpp"
+#include "gpusolve/rbd/statistics/solver_stats.hpp"
 #include "scene_options.hpp"
 
 namespace scenes {
@@ -66,8 +66,8 @@ class RunRecord {
 
   // summary.json: what ran (scene, backend, device, parameters) and the totals.
   void write_summary(const std::string& path, const Options& o, const std::string& backend,
-                     const std::string& device, const std::string& model, const std::string& accumulation,
-                     double wall_seconds) const {
+                     const std::string& device, const std::string& model, const std::string& solver,
+                     const std::string& accumulation, double wall_seconds) const {
     std::ofstream out(path);
     if (!out) throw gpusolve::InvalidArgumentError("cannot write " + path);
     gpusolve::rbd::io::JsonWriter j(out);
@@ -89,6 +89,7 @@ class RunRecord {
         .field("check_every", *o.check_every)
         .field("friction", *o.friction)
         .field("model", model)
+        .field("solver", solver)
         .field("accumulation", accumulation)
         .field("seed", o.seed)
         .end_object()

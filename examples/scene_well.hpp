@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gpusolve/rbd/body_set.hpp"
+#include "gpusolve/rbd/bodies/body_set.hpp"
 #include "gpusolve/rbd/io/povray_writer.hpp"
 #include "scene_common.hpp"
 #include "scene_options.hpp"

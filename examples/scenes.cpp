@@ -88,7 +88,7 @@ void write_frame(const Options& o, const rbd::io::Frame& f, const rbd::io::PovOp
 }
 
 // The run loop: build, step, edit, record, draw. Returns the process exit status.
-template <class Device, class Model, class Strategy>
+template <class Device, class Model, class Method>
 int run(const Options& o, AnyScene& scene, const std::string& device_name) {
   rbd::BodySet<real> set;
   scene.build(set);
@@ -102,10 +102,11 @@ int run(const Options& o, AnyScene& scene, const std::string& device_name) {
   s.margin = real(o.margin);
   s.max_retries = static_cast<std::size_t>(o.max_retries);
   s.warm_start = real(o.warm_start);
-  rbd::World<Device, real, Model, Strategy> world(set, s);
+  rbd::World<Device, real, Model, Method> world(set, s);
 
   const bool gpu = std::is_same_v<Device, gpusolve::device::gpu>;
-  const std::string accumulation = o.accumulation.empty() ? accumulation_names[0] : o.accumulation;
+  const std::string accumulation =
+      o.solver != "jacobi" ? "none" : o.accumulation.empty() ? accumulation_names[0] : o.accumulation;
   RunRecord record(o.out, o.csv_every);
   Progress progress(o.scene, *o.steps, o.status_every, o.quiet);
   if (!o.quiet)
@@ -135,8 +136,10 @@ int run(const Options& o, AnyScene& scene, const std::string& device_name) {
       write_frame(o, rbd::io::snapshot(set, static_cast<std::size_t>(step + 1), time), scene.camera);
     }
   }
-  const std::string model = std::is_same_v<Model, rbd::Frictionless> ? "frictionless" : "pyramid_friction";
-  record.write_summary(o.out + "/summary.json", o, gpu ? "gpu" : "cpu", device_name, model, accumulation,
+  const std::string model = std::is_same_v<Model, rbd::Frictionless> ? "frictionless"
+                            : std::is_same_v<Model, rbd::ConeFriction> ? "cone_friction"
+                                                                         : "pyramid_friction";
+  record.write_summary(o.out + "/summary.json", o, gpu ? "gpu" : "cpu", device_name, model, Method::name, accumulation,
                        progress.elapsed());
   if (!o.quiet)
     std::fprintf(stderr, "done in %s: max penetration %.4f, %ld divergence event(s); see %s/summary.json\n",
@@ -146,17 +149,19 @@ int run(const Options& o, AnyScene& scene, const std::string& device_name) {
 }
 
 template <class Device, class Model>
-int with_strategy(const Options& o, AnyScene& scene, const std::string& dev) {
+int with_method(const Options& o, AnyScene& scene, const std::string& dev) {
+  if (o.solver == "gauss-seidel") return run<Device, Model, rbd::ColouredGaussSeidel>(o, scene, dev);
   const std::string& a = o.accumulation.empty() ? accumulation_names[0] : o.accumulation;
-  if (a == "cache") return run<Device, Model, rbd::UpdateCache>(o, scene, dev);
-  if (a == "atomic") return run<Device, Model, rbd::Atomic>(o, scene, dev);
-  return run<Device, Model, rbd::Gather>(o, scene, dev);
+  if (a == "cache") return run<Device, Model, rbd::Jacobi<rbd::UpdateCache>>(o, scene, dev);
+  if (a == "atomic") return run<Device, Model, rbd::Jacobi<rbd::Atomic>>(o, scene, dev);
+  return run<Device, Model, rbd::Jacobi<rbd::Gather>>(o, scene, dev);
 }
 
 template <class Device>
 int with_model(const Options& o, AnyScene& scene, const std::string& dev) {
-  if (*o.friction == 0.0) return with_strategy<Device, rbd::Frictionless>(o, scene, dev);
-  return with_strategy<Device, rbd::PyramidFriction>(o, scene, dev);
+  if (*o.friction == 0.0) return with_method<Device, rbd::Frictionless>(o, scene, dev);
+  if (o.friction_model == "pyramid") return with_method<Device, rbd::PyramidFriction>(o, scene, dev);
+  return with_method<Device, rbd::ConeFriction>(o, scene, dev);
 }
 
 std::string defaults_text() {

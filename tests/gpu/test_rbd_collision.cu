@@ -4,9 +4,9 @@
 #include <vector>
 
 #include "catch_compat.hpp"
-#include "gpusolve/rbd/body_manager.hpp"
-#include "gpusolve/rbd/collision_detection.hpp"
-#include "gpusolve/rbd/integrate.hpp"
+#include "gpusolve/rbd/bodies/body_manager.hpp"
+#include "gpusolve/rbd/collision/collision_detection.hpp"
+#include "gpusolve/rbd/integration/integrate.hpp"
 #include "../host/test_rbd_collision_scene.hpp"
 
 using namespace gpusolve;

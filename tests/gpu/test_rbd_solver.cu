@@ -87,7 +87,7 @@ TEST_CASE("GPU World: resting sphere and rolling on an incline match the CPU bac
     set.add_sphere({0.5f * n[0], 0, 0.5f * n[2]}, 0.5f, 1.0f);
     SolverSettings<float> s;
     s.dt = 0.002f, s.margin = 0.02f, s.omega = 0.8f, s.tolerance = 1e-6f, s.friction = 0.5f;
-    World<Device, float, PyramidFriction, UpdateCache> w(set, s);
+    World<Device, float, PyramidFriction, Jacobi<UpdateCache>> w(set, s);
     for (int i = 0; i < 300; ++i) REQUIRE(w.step().solver.status != SolverStatus::diverged);
     w.syncHost();
     return set[1];
@@ -110,7 +110,7 @@ TEST_CASE("GPU warm-started World steps match the CPU backend", "[rbd_solver][gp
   auto run = [&](auto device) {
     using Device = decltype(device);
     auto set = pile<float>(3, 3);
-    World<Device, float, PyramidFriction, Gather> w(set, s);
+    World<Device, float, PyramidFriction, Jacobi<Gather>> w(set, s);
     for (int i = 0; i < 3; ++i) REQUIRE(w.step().solver.status != SolverStatus::diverged);
     Result r;
     Bodies<device::cpu, float> host;

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "catch_compat.hpp"
-#include "gpusolve/rbd/body_manager.hpp"
+#include "gpusolve/rbd/bodies/body_manager.hpp"
 
 using namespace gpusolve;
 using namespace gpusolve::rbd;

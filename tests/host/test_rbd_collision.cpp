@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "catch_compat.hpp"
-#include "gpusolve/rbd/body_manager.hpp"
-#include "gpusolve/rbd/collision_detection.hpp"
+#include "gpusolve/rbd/bodies/body_manager.hpp"
+#include "gpusolve/rbd/collision/collision_detection.hpp"
 #include "test_rbd_collision_scene.hpp"
 
 using namespace gpusolve;

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "gpusolve/rbd/body_set.hpp"
+#include "gpusolve/rbd/bodies/body_set.hpp"
 
 namespace rbd_test {
 

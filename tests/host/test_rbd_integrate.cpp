@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "catch_compat.hpp"
-#include "gpusolve/rbd/body_manager.hpp"
-#include "gpusolve/rbd/integrate.hpp"
+#include "gpusolve/rbd/bodies/body_manager.hpp"
+#include "gpusolve/rbd/integration/integrate.hpp"
 
 using namespace gpusolve;
 using namespace gpusolve::rbd;

@@ -36,7 +36,7 @@ TEST_CASE("a sphere resting on a plane stays at rest with bounded penetration", 
   set.add_sphere({0, 0, 0.5}, 0.5, 1.0);
   SolverSettings<double> s;
   s.dt = 0.005, s.margin = 0.01, s.omega = 0.5, s.tolerance = 1e-8;
-  World<device::cpu, double, PyramidFriction, UpdateCache> w(set, s);
+  World<device::cpu, double, PyramidFriction, Jacobi<UpdateCache>> w(set, s);
   double worst = 0, e0 = 0;
   for (int i = 0; i < 3000; ++i) {
     const auto st = w.step();
@@ -62,7 +62,7 @@ TEST_CASE("a head-on collision of two spheres conserves momentum", "[rbd_physics
   SolverSettings<double> s;
   s.dt = 0.01, s.margin = 0.05, s.omega = 0.7, s.tolerance = 1e-10;
   s.gravity[2] = 0;
-  World<device::cpu, double, Frictionless, Atomic> w(set, s);
+  World<device::cpu, double, Frictionless, Jacobi<Atomic>> w(set, s);
   const double p0 = 1.0 * 2.0 + 3.0 * -1.0;
   std::size_t with_contact = 0;
   for (int i = 0; i < 40; ++i) with_contact += w.step().solver.contacts;
@@ -90,7 +90,7 @@ double incline_acceleration(double theta, double mu) {
   s.dt = 0.002, s.margin = 0.02, s.omega = 0.8, s.tolerance = 1e-9, s.friction = mu;
   // For this normal the contact's first tangent is the slope direction (contacts.hpp
   // builds it against the y axis), so the pyramid bounds the friction force exactly.
-  World<device::cpu, double, PyramidFriction, Gather> w(set, s);
+  World<device::cpu, double, PyramidFriction, Jacobi<Gather>> w(set, s);
   const std::array<double, 3> down = {-std::cos(theta), 0, -std::sin(theta)};  // along the slope
   auto speed = [&] {
     w.syncHost();

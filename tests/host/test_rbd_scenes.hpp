@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "gpusolve/rbd/body_set.hpp"
+#include "gpusolve/rbd/bodies/body_set.hpp"
 #include "gpusolve/rbd/world.hpp"
 
 namespace rbd_test {

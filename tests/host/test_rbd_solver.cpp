@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "catch_compat.hpp"
-#include "gpusolve/rbd/pgs.hpp"
+#include "gpusolve/rbd/solvers/pgs.hpp"
 #include "test_rbd_scenes.hpp"
 
 using namespace rbd_test;
@@ -45,7 +45,7 @@ std::string error_of(F&& f) {
 
 }  // namespace
 
-TEST_CASE("Jacobi (every strategy) and Gauss-Seidel converge to the same impulses", "[rbd_solver]") {
+TEST_CASE("Jacobi (every strategy), coloured Gauss-Seidel and the sequential reference converge to the same impulses", "[rbd_solver]") {
   auto set = pile<double>(2, 2);  // 8 spheres, frictionless: a unique solution
   const SolverSettings<double> s = tight();
   Store gs_store(set);
@@ -77,6 +77,20 @@ TEST_CASE("Jacobi (every strategy) and Gauss-Seidel converge to the same impulse
   check(UpdateCache{});
   check(Atomic{});
   check(Gather{});
+
+  Store cs(set);
+  cs.syncDeviceFull();
+  Contacts<device::cpu, double, Frictionless> cc;
+  prepare_solve(cs.device(), cc, s);
+  SolverSettings<double> cgs = s;
+  cgs.omega = 0;  // its default, 1
+  ColouredGaussSeidelSolver<device::cpu, double, Frictionless> solver;
+  const auto stats = solver.solve(cs.device(), cc, cgs);
+  REQUIRE(stats.status == SolverStatus::converged);
+  CHECK(stats.omega == 1.0);
+  CHECK(stats.colours >= 4);
+  CHECK(max_abs_diff(impulses(cc), x_ref) < 1e-7 * largest);
+  CHECK(max_abs_diff(velocities(cs.device()), v_ref) < 1e-8);
 }
 
 TEST_CASE("update-cache, atomic and gather accumulation give the same velocities", "[rbd_solver]") {
@@ -104,7 +118,7 @@ TEST_CASE("every contact impulse lies inside its friction pyramid", "[rbd_solver
   for (std::size_t i = 1; i < set.size(); ++i) set[i].v = {0.3 * double(i % 3) - 0.3, 0.2, -1.0};
   SolverSettings<double> s;
   s.dt = 0.005, s.margin = 0.02, s.friction = 0.3, s.omega = 0.4;
-  World<device::cpu, double, PyramidFriction, UpdateCache> w(set, s);
+  World<device::cpu, double, PyramidFriction, Jacobi<UpdateCache>> w(set, s);
   std::size_t checked = 0, sticking = 0;
   for (int step = 0; step < 60; ++step) {
     w.step();
@@ -269,17 +283,20 @@ TEST_CASE("the residual check: largest contact residual, +inf for a non-finite v
   CHECK(check.scratch_bytes() == 0);  // the host loop needs none
 }
 
-TEST_CASE("bad solver settings give InvalidArgumentError naming the field", "[rbd_solver]") {
+namespace {
+template <class Method>
+void check_bad_settings() {
   BodySet<double> set;
   set.add_plane({0, 0, 1}, 0);
+  set.add_sphere({0, 0, 0.5}, 0.5, 1.0);
   auto with = [&](auto change) {
     SolverSettings<double> s;
     change(s);
-    return error_of([&] { World<device::cpu, double> w(set, s); });
+    return error_of([&] { World<device::cpu, double, ConeFriction, Method> w(set, s); });
   };
   CHECK(with([](auto& s) { s.dt = 0; }).find("`dt`") != std::string::npos);
   CHECK(with([](auto& s) { s.dt = -1; }).find("`dt`") != std::string::npos);
-  CHECK(with([](auto& s) { s.omega = 0; }).find("`omega`") != std::string::npos);
+  CHECK(with([](auto& s) { s.omega = -0.1; }).find("`omega`") != std::string::npos);
   CHECK(with([](auto& s) { s.omega = 2; }).find("`omega`") != std::string::npos);
   CHECK(with([](auto& s) { s.tolerance = 0; }).find("`tolerance`") != std::string::npos);
   CHECK(with([](auto& s) { s.friction = -0.1; }).find("`friction`") != std::string::npos);
@@ -290,12 +307,19 @@ TEST_CASE("bad solver settings give InvalidArgumentError naming the field", "[rb
   CHECK(with([](auto& s) { s.retry_omega_factor = 0; }).find("`retry_omega_factor`") != std::string::npos);
   CHECK(with([](auto& s) { s.retry_omega_factor = 1; }).find("`retry_omega_factor`") != std::string::npos);
   CHECK(with([](auto& s) { s.max_retries = 5000; }).find("`max_retries`") != std::string::npos);
+  CHECK(with([](auto& s) { s.omega = 0; }).find("no InvalidArgumentError") != std::string::npos);  // the default
   CHECK(with([](auto& s) { s.max_retries = 0; }).find("no InvalidArgumentError") != std::string::npos);
   CHECK(with([](auto& s) { s.max_retries = 20; }).find("no InvalidArgumentError") != std::string::npos);
   CHECK(with([](auto&) {}).find("no InvalidArgumentError") != std::string::npos);
-  World<device::cpu, double> w(set, SolverSettings<double>{});
+  World<device::cpu, double, ConeFriction, Method> w(set, SolverSettings<double>{});
   SolverSettings<double> bad;
   bad.omega = 2.5;
   CHECK_THROWS_AS(w.set_settings(bad), InvalidArgumentError);
   CHECK(w.settings().omega == SolverSettings<double>{}.omega);  // unchanged
+}
+}  // namespace
+
+TEST_CASE("bad solver settings give InvalidArgumentError naming the field, for every method", "[rbd_solver]") {
+  check_bad_settings<Jacobi<Gather>>();
+  check_bad_settings<ColouredGaussSeidel>();
 }

@@ -10,17 +10,19 @@
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/math.hpp"
-#include "gpusolve/rbd/accuracy.hpp"
-#include "gpusolve/rbd/body_manager.hpp"
-#include "gpusolve/rbd/body_set.hpp"
-#include "gpusolve/rbd/collision_detection.hpp"
-#include "gpusolve/rbd/contact_model.hpp"
-#include "gpusolve/rbd/contacts.hpp"
-#include "gpusolve/rbd/integrate.hpp"
-#include "gpusolve/rbd/jacobi.hpp"
-#include "gpusolve/rbd/solver_settings.hpp"
-#include "gpusolve/rbd/solver_stats.hpp"
-#include "gpusolve/rbd/warm_start.hpp"
+#include "gpusolve/rbd/statistics/accuracy.hpp"
+#include "gpusolve/rbd/bodies/body_manager.hpp"
+#include "gpusolve/rbd/bodies/body_set.hpp"
+#include "gpusolve/rbd/collision/collision_detection.hpp"
+#include "gpusolve/rbd/contact_models/contact_model.hpp"
+#include "gpusolve/rbd/contacts/contacts.hpp"
+#include "gpusolve/rbd/integration/integrate.hpp"
+#include "gpusolve/rbd/solvers/coloured_gauss_seidel.hpp"
+#include "gpusolve/rbd/solvers/jacobi.hpp"
+#include "gpusolve/rbd/solvers/solver.hpp"
+#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/statistics/solver_stats.hpp"
+#include "gpusolve/rbd/solvers/warm_start.hpp"
 
 namespace gpusolve::rbd {
 
@@ -41,10 +43,15 @@ inline void finish(device::gpu, stream_t stream) {
 // The bodies come from a host BodySet through a BodyManager (copied once at
 // construction; later changes are announced to manager()). Everything in step()
 // runs where the bodies live; the host is touched only by syncHost() and the
-// statistics' scalars.
-template <class Device, class T = float, class Model = PyramidFriction, class Strategy = Gather>
+// statistics' scalars. Model: a contact model (contact_models/); Method: a
+// solver's tag (solvers/solver.hpp: Jacobi<Strategy>, ColouredGaussSeidel, ...).
+template <class Device, class T = float, class Model = ConeFriction, class Method = ColouredGaussSeidel>
 class World {
  public:
+  using solver_type = solver_t<Method, Device, T, Model>;
+  static_assert(is_solver<solver_type, Device, T, Model>::value,
+                "World: Method::solver must model the Solver concept (gpusolve/rbd/solvers/solver.hpp)");
+
   World(BodySet<T>& set, const SolverSettings<T>& settings, stream_t stream = stream_t{})
       : manager_(set), stream_(stream) {
     set_settings(settings);
@@ -108,7 +115,7 @@ class World {
   SolverSettings<T> settings_;
   CollisionDetection<Device, T> detection_;
   Contacts<Device, T, Model> contacts_;
-  JacobiSolver<Device, T, Model, Strategy> solver_;
+  solver_type solver_;
   WarmStart<Device, T, Model> warm_;  // the previous step's impulses (settings.warm_start)
 };
 

@@ -5,7 +5,7 @@
 
 #include "gpusolve/math/quaternion.hpp"
 #include "gpusolve/math/rotation.hpp"
-#include "gpusolve/rbd/body_set.hpp"
+#include "gpusolve/rbd/bodies/body_set.hpp"
 #include "gpusolve/rbd/io/frame.hpp"
 
 namespace gpusolve::rbd::io {

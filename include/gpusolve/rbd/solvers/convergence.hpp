@@ -8,9 +8,9 @@
 
 #include "gpusolve/container/vector_view.hpp"
 #include "gpusolve/core/config.hpp"
-#include "gpusolve/rbd/reduce.hpp"
-#include "gpusolve/rbd/solver_settings.hpp"
-#include "gpusolve/rbd/solver_stats.hpp"
+#include "gpusolve/rbd/detail/reduce.hpp"
+#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {
 

@@ -7,16 +7,17 @@
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/rbd/accumulation.hpp"
-#include "gpusolve/rbd/bodies.hpp"
-#include "gpusolve/rbd/contact_kernels.hpp"
-#include "gpusolve/rbd/contacts.hpp"
-#include "gpusolve/rbd/convergence.hpp"
-#include "gpusolve/rbd/reduce.hpp"
-#include "gpusolve/rbd/relaxation.hpp"
-#include "gpusolve/rbd/scratch.hpp"
-#include "gpusolve/rbd/solver_settings.hpp"
-#include "gpusolve/rbd/solver_stats.hpp"
+#include "gpusolve/rbd/solvers/accumulation.hpp"
+#include "gpusolve/rbd/bodies/bodies.hpp"
+#include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/contacts/contacts.hpp"
+#include "gpusolve/rbd/solvers/convergence.hpp"
+#include "gpusolve/rbd/detail/reduce.hpp"
+#include "gpusolve/rbd/solvers/relaxation.hpp"
+#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/solvers/solver.hpp"
+#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {
 
@@ -35,6 +36,7 @@ namespace gpusolve::rbd {
 template <class Device, class T, class Model, class Strategy = Gather>
 class JacobiSolver {
  public:
+  static constexpr double default_omega = 0.5;  // undamped Jacobi diverges on piles (thesis 5.2)
   using BodyStore = Bodies<Device, T>;
   using ContactStore = Contacts<Device, T, Model>;
   using BV = typename BodyStore::View;
@@ -45,7 +47,6 @@ class JacobiSolver {
     s.validate();
     SolverStats<T> stats;
     stats.contacts = contacts.size();
-    stats.omega = s.omega;
     const std::size_t nc = contacts.size();
     if (nc == 0) return stats;  // nothing to solve: converged in zero iterations
     const Device dev{};
@@ -77,7 +78,7 @@ class JacobiSolver {
         if (measure && monitor.stop(it, check_(b, residual, nc, stream))) break;
       }
     };
-    solve_relaxed(s, b, start_, stats, attempt, stream);
+    solve_relaxed(s, omega_of<JacobiSolver>(s), b, start_, stats, attempt, stream);
     return stats;
   }
 
@@ -87,6 +88,14 @@ class JacobiSolver {
   Accumulator<Strategy, Device, T> acc_;
   VelocitySnapshot<Device, T> start_;
   ResidualCheck<Device, T> check_;
+};
+
+// The method tag of projected Jacobi (a model of the Solver concept, solver.hpp).
+template <class Strategy = Gather>
+struct Jacobi {
+  template <class Device, class T, class Model>
+  using solver = JacobiSolver<Device, T, Model, Strategy>;
+  static constexpr const char* name = "jacobi";
 };
 
 }  // namespace gpusolve::rbd

@@ -16,9 +16,9 @@
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/rbd/bodies.hpp"
-#include "gpusolve/rbd/scratch.hpp"
-#include "gpusolve/rbd/thrust_backend.hpp"
+#include "gpusolve/rbd/bodies/bodies.hpp"
+#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/detail/thrust_backend.hpp"
 
 namespace gpusolve::rbd {
 

@@ -14,7 +14,10 @@ namespace gpusolve::rbd {
 template <class T>
 struct SolverSettings {
   T dt = T(0.0025);            // time step (s)
-  T omega = T(0.5);            // under-relaxation of the Jacobi update, in (0, 2) (thesis: 0.2 to 0.7)
+  // Relaxation of the projected update, in [0, 2); 0 takes the method's own
+  // default (Jacobi 0.5, under-relaxed as in thesis 5.2, which used 0.2 to 0.7;
+  // Gauss-Seidel 1).
+  T omega = T(0);
   T tolerance = T(5e-3);       // stop when the LCP residual (m/s, see contact_kernels.hpp) is below
   std::size_t max_iterations = 2000;
   std::size_t check_every = 50;      // iterations between residual checks (thesis: 50)
@@ -49,14 +52,15 @@ struct SolverSettings {
       throw InvalidArgumentError(os.str());
     };
     if (!(dt > 0) || !std::isfinite(dt)) bad("dt", "must be positive and finite");
-    if (!(omega > 0 && omega < 2)) bad("omega", "must lie in (0, 2)");
+    if (!(omega >= 0 && omega < 2)) bad("omega", "must lie in [0, 2) (0: the method's default)");
     if (!(tolerance > 0) || !std::isfinite(tolerance)) bad("tolerance", "must be positive and finite");
     if (max_iterations == 0) bad("max_iterations", "must be at least 1");
     if (check_every == 0) bad("check_every", "must be at least 1");
     if (!(divergence_growth >= 1)) bad("divergence_growth", "must be at least 1");
     if (!(retry_omega_factor > 0 && retry_omega_factor < 1)) bad("retry_omega_factor", "must lie in (0, 1)");
     // The last retry's omega must still be a normal positive number of type T.
-    if (!(omega * std::pow(retry_omega_factor, T(max_retries)) >= std::numeric_limits<T>::min()))
+    // Every method's default omega is at least 0.5.
+    if (!((omega > 0 ? omega : T(0.5)) * std::pow(retry_omega_factor, T(max_retries)) >= std::numeric_limits<T>::min()))
       bad("max_retries", "makes omega * retry_omega_factor^max_retries underflow");
     for (T g : gravity)
       if (!std::isfinite(g)) bad("gravity", "must be finite");

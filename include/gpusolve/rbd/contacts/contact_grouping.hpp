@@ -12,9 +12,9 @@
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/rbd/reduce.hpp"
-#include "gpusolve/rbd/scratch.hpp"
-#include "gpusolve/rbd/thrust_backend.hpp"
+#include "gpusolve/rbd/detail/reduce.hpp"
+#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/detail/thrust_backend.hpp"
 
 namespace gpusolve::rbd {
 
@@ -65,6 +65,7 @@ class ContactGrouping {
     U32View slot;   // 2 * contacts: sorted position of each entry
     U32View rank;   // 2 * contacts: offset of a sorted position within its body's segment
     U32View start;  // bodies + 1: first sorted position of each body's segment
+    U32View entry;  // 2 * contacts: the entry at each sorted position (contact = entry / 2)
     std::size_t bodies;
   };
 
@@ -89,7 +90,7 @@ class ContactGrouping {
     max_segment_ = max_over(dev, nb, detail::SegmentLength<U32View>{s}, std::uint32_t(0), stream);
   }
 
-  View view() { return View{slot_.view(), rank_.view(), start_.view(), bodies_}; }
+  View view() { return View{slot_.view(), rank_.view(), start_.view(), sorted_.view(), bodies_}; }
   // The most contacts any moving body has (the thesis's c_max).
   std::size_t max_segment() const { return max_segment_; }
   // ceil(log2 c_max): passes of the log-step segmented reduction (Listing 12).

@@ -15,7 +15,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/core/error.hpp"
-#include "gpusolve/rbd/thrust_backend.hpp"
+#include "gpusolve/rbd/detail/thrust_backend.hpp"
 
 #if GPUSOLVE_HAS_NVCC
 #include <cub/device/device_reduce.cuh>

@@ -7,8 +7,8 @@
 #include <limits>
 #include <vector>
 
-#include "gpusolve/rbd/body.hpp"
-#include "gpusolve/rbd/validation.hpp"
+#include "gpusolve/rbd/bodies/body.hpp"
+#include "gpusolve/rbd/bodies/validation.hpp"
 
 namespace gpusolve::rbd {
 

@@ -6,8 +6,8 @@
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
-#include "gpusolve/rbd/contact_kernels.hpp"
-#include "gpusolve/rbd/reduce.hpp"
+#include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/detail/reduce.hpp"
 
 namespace gpusolve::rbd {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "gpusolve/core/error.hpp"
-#include "gpusolve/rbd/body.hpp"
+#include "gpusolve/rbd/bodies/body.hpp"
 
 namespace gpusolve::rbd {
 

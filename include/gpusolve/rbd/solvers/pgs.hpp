@@ -9,34 +9,20 @@
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
-#include "gpusolve/rbd/bodies.hpp"
-#include "gpusolve/rbd/contact_kernels.hpp"
-#include "gpusolve/rbd/contacts.hpp"
-#include "gpusolve/rbd/convergence.hpp"
-#include "gpusolve/rbd/relaxation.hpp"
-#include "gpusolve/rbd/solver_settings.hpp"
-#include "gpusolve/rbd/solver_stats.hpp"
+#include "gpusolve/rbd/bodies/bodies.hpp"
+#include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/contacts/contacts.hpp"
+#include "gpusolve/rbd/solvers/convergence.hpp"
+#include "gpusolve/rbd/solvers/relaxation.hpp"
+#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {
-
-namespace detail {
-
-// Applies a contact's velocity change to its body at once: what makes the
-// sweep Gauss-Seidel (each contact sees the updates of the contacts before it).
-template <class BV, class T>
-struct DirectSink {
-  BV b;
-  GPUSOLVE_HD void add(std::size_t, std::uint32_t body, const math::Vector3<T>& dv, const math::Vector3<T>& dw) const {
-    for (std::size_t k = 0; k < 3; ++k) b.v(body, k) += dv[k], b.w(body, k) += dw[k];
-  }
-};
-
-}  // namespace detail
 
 // Same contract as JacobiSolver::solve; one iteration is one sweep over the
 // contacts in order, and the residual (contact_kernels.hpp) is the largest
 // velocity change of that sweep; a diverging sweep is retried at a smaller omega
-// like the Jacobi solver's. Use omega = 1 for plain Gauss-Seidel.
+// like the Jacobi solver's. omega 0 (the default) is plain Gauss-Seidel, omega 1.
 template <class T, class Model>
 SolverStats<T> solve_gauss_seidel(Bodies<device::cpu, T>& bodies, Contacts<device::cpu, T, Model>& contacts,
                                   const SolverSettings<T>& s) {
@@ -46,7 +32,6 @@ SolverStats<T> solve_gauss_seidel(Bodies<device::cpu, T>& bodies, Contacts<devic
   SolverStats<T> stats;
   const std::size_t nc = contacts.size();
   stats.contacts = nc;
-  stats.omega = s.omega;
   if (nc == 0) return stats;
   const BV b = bodies.view();
   const CV c = contacts.view();
@@ -71,7 +56,7 @@ SolverStats<T> solve_gauss_seidel(Bodies<device::cpu, T>& bodies, Contacts<devic
     }
   };
   VelocitySnapshot<device::cpu, T> start;
-  solve_relaxed(s, b, start, stats, attempt);
+  solve_relaxed(s, s.omega > 0 ? s.omega : T(1), b, start, stats, attempt);
   return stats;
 }
 

@@ -3,7 +3,7 @@
 
 #include <array>
 
-#include "gpusolve/rbd/shapes.hpp"
+#include "gpusolve/rbd/bodies/shapes.hpp"
 
 namespace gpusolve::rbd {
 

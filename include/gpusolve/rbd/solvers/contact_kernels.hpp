@@ -71,6 +71,17 @@ struct BodyResponse {
   }
 };
 
+// Applies a contact's velocity change to its body at once: what makes a
+// sweep Gauss-Seidel (each contact sees the updates of the contacts before it).
+// Safe in parallel only over contacts that share no moving body (a colour).
+template <class BV, class T>
+struct DirectSink {
+  BV b;
+  GPUSOLVE_HD void add(std::size_t, std::uint32_t body, const math::Vector3<T>& dv, const math::Vector3<T>& dw) const {
+    for (std::size_t k = 0; k < 3; ++k) b.v(body, k) += dv[k], b.w(body, k) += dw[k];
+  }
+};
+
 }  // namespace detail
 
 // The contact's own diagonal block W = Q^T (K_a + K_b) Q with, per body,

@@ -11,9 +11,9 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/math.hpp"
-#include "gpusolve/rbd/contact_grouping.hpp"
-#include "gpusolve/rbd/contact_kernels.hpp"
-#include "gpusolve/rbd/scratch.hpp"
+#include "gpusolve/rbd/contacts/contact_grouping.hpp"
+#include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/detail/scratch.hpp"
 
 namespace gpusolve::rbd {
 

@@ -10,9 +10,9 @@
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/core/error.hpp"
 #include "gpusolve/memory/copy.hpp"
-#include "gpusolve/rbd/bodies.hpp"
-#include "gpusolve/rbd/body_set.hpp"
-#include "gpusolve/rbd/integrate.hpp"
+#include "gpusolve/rbd/bodies/bodies.hpp"
+#include "gpusolve/rbd/bodies/body_set.hpp"
+#include "gpusolve/rbd/integration/integrate.hpp"
 
 namespace gpusolve::rbd {
 

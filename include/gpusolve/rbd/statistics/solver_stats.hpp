@@ -39,6 +39,7 @@ struct SolverStats {
   T omega = 0;                       // the under-relaxation of the last attempt
   std::size_t retries = 0;           // attempts restarted after a divergence
   std::size_t reduction_passes = 0;  // UpdateCache only: ceil(log2 c_max)
+  std::size_t colours = 0;           // ColouredGaussSeidel only: colours of the step's contacts
   std::vector<T> residuals;
   std::vector<std::size_t> checked_at;
   T residual() const { return residuals.empty() ? T(0) : residuals.back(); }

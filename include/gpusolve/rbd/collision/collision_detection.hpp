@@ -16,12 +16,12 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/math.hpp"
-#include "gpusolve/rbd/bodies.hpp"
-#include "gpusolve/rbd/broad_phase.hpp"
-#include "gpusolve/rbd/contacts.hpp"
-#include "gpusolve/rbd/narrow_phase.hpp"
-#include "gpusolve/rbd/scratch.hpp"
-#include "gpusolve/rbd/thrust_backend.hpp"
+#include "gpusolve/rbd/bodies/bodies.hpp"
+#include "gpusolve/rbd/collision/broad_phase.hpp"
+#include "gpusolve/rbd/contacts/contacts.hpp"
+#include "gpusolve/rbd/collision/narrow_phase.hpp"
+#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/detail/thrust_backend.hpp"
 
 namespace gpusolve::rbd {
 namespace detail {

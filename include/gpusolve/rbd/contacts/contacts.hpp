@@ -11,8 +11,8 @@
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
-#include "gpusolve/rbd/contact_model.hpp"
-#include "gpusolve/rbd/logical_view.hpp"
+#include "gpusolve/rbd/contact_models/contact_model.hpp"
+#include "gpusolve/rbd/detail/logical_view.hpp"
 
 namespace gpusolve::rbd {
 

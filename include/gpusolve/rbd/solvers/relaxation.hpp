@@ -8,9 +8,9 @@
 #include "gpusolve/container/vector_view.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/rbd/scratch.hpp"
-#include "gpusolve/rbd/solver_settings.hpp"
-#include "gpusolve/rbd/solver_stats.hpp"
+#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {
 
@@ -57,7 +57,7 @@ class VelocitySnapshot {
   VectorD2<T, device_is<Device>> v_, w_;
 };
 
-// Runs attempt(omega, stats), one solve from the bodies' current velocities
+// Runs attempt(omega, stats) from `omega`, one solve from the bodies' current velocities
 // (its starting impulses are its own choice; stats.retries says which attempt
 // it is) that sets stats.status, iterations and the residual history. While an attempt diverges and s.max_retries allows, restores the
 // velocities saved before the first attempt, multiplies omega by
@@ -65,10 +65,10 @@ class VelocitySnapshot {
 // the omega it used, the number of retries and the iterations of all attempts.
 // Throws DivergenceError when the last attempt diverged and the settings ask for it.
 template <class Device, class T, class BV, class Attempt>
-void solve_relaxed(const SolverSettings<T>& s, const BV& b, VelocitySnapshot<Device, T>& start,
+void solve_relaxed(const SolverSettings<T>& s, T omega, const BV& b, VelocitySnapshot<Device, T>& start,
                    SolverStats<T>& stats, Attempt&& attempt, stream_t stream = stream_t{}) {
   if (s.max_retries > 0) start.save(b, stream);
-  stats.omega = s.omega;
+  stats.omega = omega;
   for (;;) {
     stats.residuals.clear();
     stats.checked_at.clear();

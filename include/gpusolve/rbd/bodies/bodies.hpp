@@ -11,8 +11,8 @@
 #include "gpusolve/container/vector_d2_offset.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
-#include "gpusolve/rbd/logical_view.hpp"
-#include "gpusolve/rbd/shapes.hpp"
+#include "gpusolve/rbd/detail/logical_view.hpp"
+#include "gpusolve/rbd/bodies/shapes.hpp"
 
 namespace gpusolve::rbd {
 

@@ -13,9 +13,9 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/math.hpp"
-#include "gpusolve/rbd/broad_phase.hpp"
-#include "gpusolve/rbd/contact_kernels.hpp"
-#include "gpusolve/rbd/scratch.hpp"
+#include "gpusolve/rbd/collision/broad_phase.hpp"
+#include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/detail/scratch.hpp"
 
 namespace gpusolve::rbd {
 

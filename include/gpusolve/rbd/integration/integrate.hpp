@@ -9,7 +9,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/math.hpp"
-#include "gpusolve/rbd/bodies.hpp"
+#include "gpusolve/rbd/bodies/bodies.hpp"
 
 namespace gpusolve::rbd {
 

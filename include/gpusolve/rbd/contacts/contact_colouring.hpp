@@ -1,0 +1,171 @@
+// ContactColouring: splits the contacts of one step into colours, sets of
+// contacts that share no moving body, on the contacts' backend.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <cuda/atomic>
+#include <thrust/binary_search.h>
+#include <thrust/copy.h>
+#include <thrust/iterator/counting_iterator.h>
+#include <thrust/sequence.h>
+#include <thrust/sort.h>
+
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/core/launch.hpp"
+#include "gpusolve/rbd/contacts/contact_grouping.hpp"
+#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/detail/thrust_backend.hpp"
+
+namespace gpusolve::rbd {
+
+namespace detail {
+
+inline constexpr std::uint32_t uncoloured = 0xffffffffu;
+inline constexpr std::uint32_t mask_colours = 64;  // colours chosen first-fit from a 64-bit mask
+
+// A contact's place in the selection order: a hash of its index (so that
+// neighbouring contacts rarely wait on each other in long chains), the index
+// itself breaking ties. Deterministic: the same contacts give the same colours.
+GPUSOLVE_HD inline std::uint64_t colour_key(std::uint32_t i) {
+  std::uint32_t h = i * 0x9E3779B1u;
+  h ^= h >> 15, h *= 0x85EBCA77u, h ^= h >> 13;
+  return (std::uint64_t(h) << 32) | i;
+}
+
+// Calls f(j) for every contact j that shares moving body k (contact i's own entry included).
+template <class GV, class F>
+GPUSOLVE_HD void for_contacts_of(const GV& g, std::uint32_t k, F&& f) {
+  for (std::uint32_t p = g.start[k]; p < g.start[k + 1]; ++p) f(g.entry[p] / 2);
+}
+
+// Per moving body: the smallest key of its contacts still uncoloured.
+template <class BV, class GV>
+struct SmallestUncoloured {
+  BV b;
+  GV g;
+  const std::uint32_t* colour;
+  std::uint64_t* best;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    if (!b.moving(k)) return;
+    std::uint64_t m = ~std::uint64_t(0);
+    for_contacts_of(g, std::uint32_t(k), [&](std::uint32_t j) {
+      const std::uint64_t key = colour_key(j);
+      if (colour[j] == uncoloured && key < m) m = key;
+    });
+    best[k] = m;
+  }
+};
+
+// An uncoloured contact that is the smallest at each of its moving bodies takes
+// the smallest colour none of its neighbours has. Contacts picked in one round
+// share no moving body, so none reads a colour another writes in this round.
+// Past 64 colours a contact takes 64 + round, distinct from every other round.
+template <class BV, class CV, class GV>
+struct PickColour {
+  BV b;
+  CV c;
+  GV g;
+  std::uint32_t* colour;
+  const std::uint64_t* best;
+  std::uint32_t round;
+  std::uint32_t* counters;  // [0]: contacts coloured so far, [1]: colours used
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    if (colour[i] != uncoloured) return;
+    const std::uint32_t ends[2] = {c.a[i], c.b[i]};
+    const std::uint64_t key = colour_key(std::uint32_t(i));
+    for (std::uint32_t k : ends)
+      if (b.moving(k) && best[k] != key) return;
+    std::uint64_t used = 0;
+    for (std::uint32_t k : ends)
+      if (b.moving(k))
+        for_contacts_of(g, k, [&](std::uint32_t j) {
+          if (colour[j] < mask_colours) used |= std::uint64_t(1) << colour[j];
+        });
+    std::uint32_t pick = 0;
+    while (pick < mask_colours && (used >> pick) & 1u) ++pick;
+    if (pick == mask_colours) pick = mask_colours + round;
+    colour[i] = pick;
+    cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(counters[0]).fetch_add(1, cuda::std::memory_order_relaxed);
+    cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(counters[1]).fetch_max(pick + 1, cuda::std::memory_order_relaxed);
+  }
+};
+
+}  // namespace detail
+
+// Colours the contacts of `c` (over the bodies of `b`) so that no two contacts
+// of one colour share a moving body; contacts with fixed bodies (the floor) do
+// not conflict there. A Jones-Plassmann-style parallel greedy colouring: each
+// round, every contact that precedes its uncoloured neighbours in a hashed
+// order takes the smallest colour its neighbours leave free. About as many
+// colours as the most contacts on one body (a close-packed sphere: 12).
+// Deterministic on both backends. After build(), order() lists the contacts
+// colour by colour, colour k occupying [offset(k), offset(k + 1)); those
+// offsets are the host's, read back once per build.
+template <class Device>
+class ContactColouring {
+ public:
+  using U32 = VectorD1<std::uint32_t, device_is<Device>>;
+
+  template <class BV, class CV>
+  void build(const BV& b, const CV& c, stream_t stream = stream_t{}) {
+    const std::size_t nc = c.size();
+    offsets_.assign(1, 0);
+    if (nc == 0) return;
+    const Device dev{};
+    grouping_.build(b, c, stream);
+    detail::ensure_size(colour_, nc);
+    detail::ensure_size(order_, nc);
+    detail::ensure_size(best_, b.size());
+    colour_.fill(detail::uncoloured, stream);
+    if (counters_.size_x() == 0) counters_.resize(2);
+    counters_.fill(0u, stream);
+    const auto g = grouping_.view();
+    using GV = decltype(g);
+    std::uint32_t round = 0, coloured = 0, colours = 0;
+    // Rounds in batches between read-backs: every round colours at least the
+    // contact of smallest key, and most finish in a few dozen.
+    for (std::uint32_t batch = 4; coloured < nc; batch *= 2) {
+      for (std::uint32_t r = 0; r < batch; ++r, ++round) {
+        launch(dev, b.size(), detail::SmallestUncoloured<BV, GV>{b, g, colour_.data(), best_.data()}, stream);
+        launch(dev, nc, detail::PickColour<BV, CV, GV>{b, c, g, colour_.data(), best_.data(), round, counters_.data()},
+               stream);
+      }
+      coloured = detail::read_back<Device>(counters_.data(), 0, stream);
+      colours = detail::read_back<Device>(counters_.data(), 1, stream);
+    }
+    rounds_ = round;
+    const auto policy = detail::thrust_policy(dev, stream);
+    thrust::sequence(policy, order_.data(), order_.data() + nc);
+    detail::ensure_size(sorted_colour_, nc);
+    thrust::copy(policy, colour_.data(), colour_.data() + nc, sorted_colour_.data());
+    thrust::stable_sort_by_key(policy, sorted_colour_.data(), sorted_colour_.data() + nc, order_.data());
+    detail::ensure_size(bounds_, colours + 1);
+    const thrust::counting_iterator<std::uint32_t> first(0);
+    thrust::lower_bound(policy, sorted_colour_.data(), sorted_colour_.data() + nc, first, first + (colours + 1),
+                        bounds_.data());
+    offsets_.resize(colours + 1);
+    bounds_host_.resize(bounds_.size_x());
+    bounds_host_ = bounds_;  // one copy back: the host launches colour by colour
+    for (std::size_t k = 0; k <= colours; ++k) offsets_[k] = bounds_host_(k);
+  }
+
+  std::size_t colours() const { return offsets_.size() - 1; }
+  std::size_t offset(std::size_t k) const { return offsets_[k]; }
+  const std::uint32_t* order() const { return order_.data(); }
+  const std::uint32_t* colour() const { return colour_.data(); }
+  std::size_t rounds() const { return rounds_; }
+
+ private:
+  ContactGrouping<Device> grouping_;
+  U32 colour_, sorted_colour_, order_, counters_, bounds_;
+  VectorD1<std::uint32_t, device_is<device::cpu>> bounds_host_;
+  VectorD1<std::uint64_t, device_is<Device>> best_;
+  std::vector<std::size_t> offsets_{0};
+  std::size_t rounds_ = 0;
+};
+
+}  // namespace gpusolve::rbd

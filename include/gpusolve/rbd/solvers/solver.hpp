@@ -1,0 +1,65 @@
+// The Solver concept: what every contact solver of the library promises, and
+// the method tags that name one for World.
+#pragma once
+
+#include <type_traits>
+#include <utility>
+
+#include "gpusolve/core/device.hpp"
+#include "gpusolve/rbd/bodies/bodies.hpp"
+#include "gpusolve/rbd/contacts/contacts.hpp"
+#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/statistics/solver_stats.hpp"
+
+namespace gpusolve::rbd {
+
+// A METHOD is a tag type (Jacobi<>, ColouredGaussSeidel, ...) with
+//   template <class Device, class T, class Model> using solver = ...;
+//   static constexpr const char* name;
+// and its solver S = Method::solver<Device, T, Model> is a default-constructible
+// class with
+//   static constexpr double default_omega;  // relaxation when SolverSettings::omega is 0
+//   SolverStats<T> solve(Bodies<Device, T>&, Contacts<Device, T, Model>&,
+//                        const SolverSettings<T>&, stream_t stream, bool from_x);
+// The contract of solve():
+//  - reads the bodies' velocities (the step's external impulses already applied),
+//    masses, inertias, and the contacts' geometry (a, b, n, t, o, ra, rb, phi0, mu);
+//  - writes the constrained velocities into the bodies and each contact's impulse
+//    into contacts.x, in the contact frame (rows: normal, t, o), inside the
+//    model's admissible set (Model::project); contacts.dinv is its own scratch;
+//  - from_x: start from the impulses in contacts.x (warm start, warm_start.hpp),
+//    whose velocity change it applies first; else from zero impulses;
+//  - stops when the LCP residual (solvers/contact_kernels.hpp, the same
+//    definition for all methods) is below SolverSettings::tolerance, or at
+//    max_iterations; detects divergence with ConvergenceMonitor and retries at a
+//    smaller omega through solve_relaxed (relaxation.hpp), reporting all of it
+//    in SolverStats and throwing DivergenceError where the settings ask;
+//  - calls settings.validate() first (InvalidArgumentError naming the field);
+//  - runs on device::cpu and device::gpu with the same __host__ __device__
+//    kernel bodies, keeping its scratch storage between calls.
+// Adding a method is one header that defines its tag and solver, and its tests.
+
+template <class Method, class Device, class T, class Model>
+using solver_t = typename Method::template solver<Device, T, Model>;
+
+// Whether S offers solve() with the signature above (a compile-time check of the concept).
+template <class S, class Device, class T, class Model, class = void>
+struct is_solver : std::false_type {};
+template <class S, class Device, class T, class Model>
+struct is_solver<S, Device, T, Model,
+                 std::void_t<decltype(std::declval<S&>().solve(
+                                 std::declval<Bodies<Device, T>&>(), std::declval<Contacts<Device, T, Model>&>(),
+                                 std::declval<const SolverSettings<T>&>(), stream_t{}, bool{})),
+                             decltype(S::default_omega)>>
+    : std::is_same<decltype(std::declval<S&>().solve(std::declval<Bodies<Device, T>&>(),
+                                                     std::declval<Contacts<Device, T, Model>&>(),
+                                                     std::declval<const SolverSettings<T>&>(), stream_t{}, bool{})),
+                   SolverStats<T>> {};
+
+// The relaxation a solve uses: the settings' omega, or the method's default when it is 0.
+template <class S, class T>
+T omega_of(const SolverSettings<T>& s) {
+  return s.omega > T(0) ? s.omega : T(S::default_omega);
+}
+
+}  // namespace gpusolve::rbd

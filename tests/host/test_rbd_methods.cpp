@@ -1,0 +1,199 @@
+// Every solver method on the CPU backend: contact colouring, the isotropic
+// friction cone (a sphere sliding in any direction), impulses inside their cone,
+// and a column of alternating light and heavy spheres.
+#include <cmath>
+#include <cstdint>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "catch_compat.hpp"
+#include "test_rbd_scenes.hpp"
+
+using namespace rbd_test;
+
+namespace {
+constexpr double g = 9.81;
+}
+
+TEST_CASE("contact colouring: no colour holds two contacts of one moving body, and it is deterministic",
+          "[rbd_methods]") {
+  auto set = pile<double>(4, 4);  // 64 spheres, up to 12 contacts each, and the floor
+  BodyManager<device::cpu, double> m(set);
+  m.syncDeviceFull();
+  Contacts<device::cpu, double, Frictionless> c;
+  CollisionDetection<device::cpu, double> cd;
+  cd.detect(m.device(), c, 0.02);
+  REQUIRE(c.size() > 200);
+  const auto b = m.device().view();
+  ContactColouring<device::cpu> col;
+  col.build(b, c.view());
+  REQUIRE(col.colours() >= 6);  // a sphere inside the pile touches many others
+  CHECK(col.colours() <= 30);
+  std::vector<std::uint32_t> seen(c.size(), 0);
+  std::size_t floor_contacts = 0;
+  for (std::size_t k = 0; k < col.colours(); ++k) {
+    std::set<std::uint32_t> bodies;
+    for (std::size_t p = col.offset(k); p < col.offset(k + 1); ++p) {
+      const std::uint32_t i = col.order()[p];
+      REQUIRE(i < c.size());
+      ++seen[i];
+      REQUIRE(col.colour()[i] == k);
+      for (std::uint32_t body : {c.a(i), c.b(i)}) {
+        if (!b.moving(body)) {
+          ++floor_contacts;
+          continue;
+        }
+        REQUIRE(bodies.insert(body).second);  // no moving body twice in one colour
+      }
+    }
+  }
+  CHECK(floor_contacts >= 16);
+  for (std::uint32_t n : seen) REQUIRE(n == 1);  // every contact in exactly one colour
+  ContactColouring<device::cpu> again;
+  again.build(b, c.view());
+  REQUIRE(again.colours() == col.colours());
+  for (std::size_t p = 0; p < c.size(); ++p) REQUIRE(again.order()[p] == col.order()[p]);
+}
+
+namespace {
+
+// A sphere (radius 0.5) launched without spin at v0 along angle theta on the
+// plane z = 0. Friction mu decelerates it and spins it up until the contact
+// point stops slipping at t* = 2 v0 / (7 mu g); from then on it rolls at 5/7 v0.
+struct Sliding {
+  double t_stop = -1;                 // first time the contact point's slip fell below 1e-3 v0
+  double v_along = 0, v_across = 0;   // velocity after rolling for a while
+};
+
+template <class Model, class Method>
+Sliding slide(double theta, double v0, double mu) {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  const double r = 0.5;
+  set.add_sphere({0, 0, r}, r, 1.0);
+  set[1].v = {v0 * std::cos(theta), v0 * std::sin(theta), 0};
+  SolverSettings<double> s;
+  s.dt = 5e-4, s.margin = 0.01, s.tolerance = 1e-10, s.friction = mu;
+  World<device::cpu, double, Model, Method> w(set, s);
+  Sliding out;
+  const double t_star = 2 * v0 / (7 * mu * g);
+  const int steps = int(1.5 * t_star / s.dt);
+  for (int i = 1; i <= steps; ++i) {
+    REQUIRE(w.step().solver.contacts == 1);
+    auto& b = w.bodies();
+    // Slip: velocity of the contact point (0, 0, -r) from the centre, v + w x (0, 0, -r).
+    const double sx = b.v(1, 0) - r * b.w(1, 1), sy = b.v(1, 1) + r * b.w(1, 0);
+    if (out.t_stop < 0 && std::hypot(sx, sy) < 1e-3 * v0) out.t_stop = i * s.dt;
+  }
+  w.syncHost();
+  out.v_along = set[1].v[0] * std::cos(theta) + set[1].v[1] * std::sin(theta);
+  out.v_across = -set[1].v[0] * std::sin(theta) + set[1].v[1] * std::cos(theta);
+  return out;
+}
+
+template <class Method>
+void check_cone_sliding() {
+  const double v0 = 2.0, mu = 0.3;
+  const double t_star = 2 * v0 / (7 * mu * g);
+  for (double deg : {0.0, 22.5, 45.0, 67.5}) {
+    INFO("direction " << deg << " degrees, method " << Method::name);
+    const Sliding s = slide<ConeFriction, Method>(deg * M_PI / 180, v0, mu);
+    CHECK(s.t_stop == Approx(t_star).epsilon(0.02));
+    CHECK(s.v_along == Approx(5.0 / 7.0 * v0).epsilon(0.01));
+    CHECK(std::fabs(s.v_across) < 1e-6 * v0);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("cone friction: a sphere sliding in any direction stops slipping at 2 v0 / (7 mu g), then rolls at 5/7 v0",
+          "[rbd_methods]") {
+  check_cone_sliding<Jacobi<Gather>>();
+  check_cone_sliding<ColouredGaussSeidel>();
+}
+
+TEST_CASE("the pyramid's friction depends on the direction of sliding (the cone's does not)", "[rbd_methods]") {
+  const double v0 = 2.0, mu = 0.3;
+  const double t_star = 2 * v0 / (7 * mu * g);
+  // Along a tangent axis the pyramid is exact; on its diagonal the force reaches
+  // sqrt(2) mu N and the sphere stops slipping sqrt(2) times too early.
+  const Sliding axis = slide<PyramidFriction, ColouredGaussSeidel>(0.0, v0, mu);
+  const Sliding diagonal = slide<PyramidFriction, ColouredGaussSeidel>(M_PI / 4, v0, mu);
+  CHECK(axis.t_stop == Approx(t_star).epsilon(0.02));
+  CHECK(diagonal.t_stop == Approx(t_star / std::sqrt(2.0)).epsilon(0.03));
+}
+
+namespace {
+
+template <class Method>
+void check_impulses_in_cone() {
+  auto set = pile<double>(3, 2, 0.5, 0.01);
+  for (std::size_t i = 1; i < set.size(); ++i) set[i].v = {0.3 * double(i % 3) - 0.3, 0.2, -1.0};
+  SolverSettings<double> s;
+  s.dt = 0.005, s.margin = 0.02, s.friction = 0.3;
+  World<device::cpu, double, ConeFriction, Method> w(set, s);
+  std::size_t checked = 0, on_rim = 0;
+  for (int step = 0; step < 60; ++step) {
+    w.step();
+    auto& c = w.contacts();
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const double xn = c.x(i, 0), lim = c.mu(i) * xn, xt = std::hypot(c.x(i, 1), c.x(i, 2));
+      REQUIRE(xn >= 0);
+      REQUIRE(xt <= lim * (1 + 1e-12) + 1e-15);
+      checked += xn > 0;
+      on_rim += xn > 0 && xt > 0.999 * lim;
+    }
+  }
+  CHECK(checked > 100);
+  CHECK(on_rim > 0);  // some contacts slide: the rim of the cone was reached
+}
+
+}  // namespace
+
+TEST_CASE("every method keeps each impulse inside its friction cone", "[rbd_methods]") {
+  check_impulses_in_cone<Jacobi<Gather>>();
+  check_impulses_in_cone<ColouredGaussSeidel>();
+}
+
+namespace {
+
+// Ten spheres (radius 0.5) stacked on the floor, masses alternating 1 and
+// `ratio` from the bottom: heavy on light is what makes the iteration slow (the
+// light sphere's contacts see the heavy one's weight only through many
+// iterations). Returns how far the top sphere sank below its resting height and
+// the largest penetration over `steps` steps, relative to the radius.
+template <class Method>
+std::pair<double, double> column(double ratio, int steps) {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  const double r = 0.5;
+  for (int k = 0; k < 10; ++k) set.add_sphere({0, 0, r + 2 * r * k}, r, k % 2 ? ratio : 1.0);
+  SolverSettings<double> s;
+  s.margin = 0.05;
+  World<device::cpu, double, ConeFriction, Method> w(set, s);
+  double pen = 0;
+  for (int i = 0; i < steps; ++i) {
+    const auto st = w.step();
+    REQUIRE(st.solver.status != SolverStatus::diverged);
+    pen = std::fmax(pen, st.max_penetration);
+  }
+  w.syncHost();
+  return {(r + 18 * r - set[10].pos[2]) / r, pen};
+}
+
+}  // namespace
+
+TEST_CASE("a column of spheres with masses 1 and 1000 stands under every method", "[rbd_methods]") {
+  for (double ratio : {1.0, 1000.0}) {
+    INFO("mass ratio " << ratio);
+    const auto jac = column<Jacobi<Gather>>(ratio, 400);
+    const auto gs = column<ColouredGaussSeidel>(ratio, 400);
+    INFO("Jacobi: sank " << jac.first << ", penetration " << jac.second << "; Gauss-Seidel: sank " << gs.first
+                          << ", penetration " << gs.second);
+    CHECK(std::fabs(jac.first) < 0.02);
+    CHECK(std::fabs(gs.first) < 0.02);
+    CHECK(jac.second < 0.005);
+    CHECK(gs.second < 0.005);
+  }
+}
