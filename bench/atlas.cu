@@ -1,0 +1,205 @@
+// The speed-accuracy atlas: whole time steps of World on the GPU, per scene,
+// solver method and iteration budget: time per step against the largest
+// penetration and the LCP residual it bought, and whether each step converged.
+//
+// Run: gpusolve_bench_atlas --scene pile|column [--n 10000,100000] [--ratios 1,100,1000]
+//        [--methods gauss-seidel,jacobi] [--budgets default,it10,it20,tol0.02] [--margins 0.1]
+//        [--dts 0.0025] [--steps N] [--csv FILE]
+//
+// pile:   the shared pile (bench/shared_pile.hpp, PILE.md), N spheres dropped into
+//         an open box; 1 200 steps for N <= 10 000, else 900 (PILE.md's counts).
+// column: ten spheres stacked, masses alternating 1 and the ratio; 2 000 steps.
+// Budgets: "default" is SolverSettings{} as a user gets it (tolerance, iteration
+// cap and residual checks as shipped); "itK" runs exactly K iterations per step,
+// the residual measured once after the last; "tolX" iterates to tolerance X
+// (cap 2 000, checked every 10). Every run: friction 0.5, the cone model.
+// Measured, over the last third of the steps: time per whole step (detection,
+// solve, integration and World's statistics, what a user's loop pays) with CUDA
+// events around World::step, mean and median; mean iterations; the median final
+// residual. Over the last 200 steps: the largest penetration relative to the
+// radius. Over the whole run: steps at the iteration cap and diverged steps.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <exception>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "gpusolve/rbd/world.hpp"
+#include "shared_pile.hpp"
+#include "timing.hpp"
+
+namespace {
+using namespace gpusolve;
+using namespace gpusolve::bench;
+using T = float;
+using Dev = device::gpu;
+using rbd::SolverSettings;
+
+struct Options {
+  std::string scene = "pile";
+  std::vector<std::size_t> n{10000};
+  std::vector<double> ratios{1, 100, 1000};
+  std::vector<std::string> methods{"gauss-seidel", "jacobi"};
+  std::vector<std::string> budgets{"default"};
+  std::vector<double> margins{-1};  // -1: the library's default
+  std::vector<double> dts{0.0025};
+  long steps = 0;  // 0: the scene's
+  std::string csv;
+};
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t a = 0;
+  for (std::size_t b; (b = s.find(',', a)) != std::string::npos; a = b + 1) out.push_back(s.substr(a, b - a));
+  out.push_back(s.substr(a));
+  return out;
+}
+
+struct Run {
+  std::string scene, method, budget;
+  std::size_t n = 0;
+  double ratio = 1, margin = 0, dt = 0;
+  long steps = 0;
+};
+
+struct Result {
+  double ms_mean = 0, ms_median = 0, penetration = 0, residual = 0, iterations = 0, kinetic = 0, height = 0;
+  std::size_t contacts = 0, capped = 0, diverged = 0, colours = 0;
+  bool fell = false;  // a column whose top sphere left its place by more than a radius
+};
+
+SolverSettings<T> settings_for(const Run& r) {
+  SolverSettings<T> s;
+  s.dt = T(r.dt);
+  s.friction = T(0.5);
+  if (r.margin >= 0) s.margin = T(r.margin);
+  if (r.budget.rfind("it", 0) == 0) {
+    s.max_iterations = std::stoul(r.budget.substr(2));
+    s.check_every = s.max_iterations;
+    s.tolerance = std::numeric_limits<T>::min();
+  } else if (r.budget.rfind("tol", 0) == 0) {
+    s.tolerance = T(std::stod(r.budget.substr(3)));
+    s.max_iterations = 2000;
+    s.check_every = 10;
+  } else if (r.budget != "default") {
+    throw InvalidArgumentError("atlas: unknown budget '" + r.budget + "' (default, itK or tolX)");
+  }
+  return s;
+}
+
+template <class Method>
+Result run(const Run& r) {
+  rbd::BodySet<T> set = r.scene == "pile" ? shared_pile<T>(r.n) : mass_column<T>(r.n, r.ratio);
+  const SolverSettings<T> s = settings_for(r);
+  rbd::World<Dev, T, rbd::ConeFriction, Method> world(set, s);
+  EventTimer timer(stream_t{});
+  std::vector<double> ms, residuals;
+  Result out;
+  double iterations = 0;
+  const long last_third = r.steps - r.steps / 3;
+  for (long step = 0; step < r.steps; ++step) {
+    timer.start();
+    const rbd::StepStats<T> st = world.step();
+    const double t = timer.stop_ms();
+    out.capped += st.solver.status == rbd::SolverStatus::max_iterations;
+    out.diverged += st.solver.status == rbd::SolverStatus::diverged || !std::isfinite(st.max_penetration);
+    if (step >= last_third) {
+      ms.push_back(t);
+      residuals.push_back(double(st.solver.residual()));
+      iterations += double(st.solver.total_iterations);
+    }
+    if (step >= r.steps - 200) out.penetration = std::max(out.penetration, double(st.max_penetration));
+    if (step + 1 == r.steps) {
+      out.contacts = st.solver.contacts;
+      out.kinetic = st.kinetic_energy;
+      out.colours = st.solver.colours;
+    }
+  }
+  world.syncHost();
+  for (std::size_t i = 0; i < set.size(); ++i)
+    if (set[i].status == rbd::active) out.height = std::max(out.height, double(set[i].pos[2]));
+  if (r.scene == "column") out.fell = std::fabs(out.height - double(2 * r.n - 1)) > 1.0;
+  double sum = 0;
+  for (double v : ms) sum += v;
+  out.ms_mean = sum / double(ms.size());
+  out.ms_median = spread(ms).median;
+  out.residual = spread(residuals).median;
+  out.iterations = iterations / double(ms.size());
+  return out;
+}
+
+Result dispatch(const Run& r) {
+  if (r.method == "gauss-seidel") return run<rbd::ColouredGaussSeidel>(r);
+  if (r.method == "jacobi") return run<rbd::Jacobi<rbd::Gather>>(r);
+  throw InvalidArgumentError("atlas: unknown method '" + r.method + "' (gauss-seidel or jacobi)");
+}
+
+const char* verdict(const Run& r, const Result& x) {
+  if (x.diverged > 0 || x.fell || !(x.penetration < 0.5)) return "diverged";
+  return x.capped > std::size_t(r.steps / 100) ? "capped" : "converged";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  const char* usage =
+      "--scene pile|column [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
+      "[--dts LIST] [--steps N] [--csv FILE]";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--scene") o.scene = option_value(argc, argv, i);
+    else if (a == "--n") o.n = parse_list<std::size_t>(option_value(argc, argv, i));
+    else if (a == "--ratios") o.ratios = parse_list<double>(option_value(argc, argv, i));
+    else if (a == "--methods") o.methods = split(option_value(argc, argv, i));
+    else if (a == "--budgets") o.budgets = split(option_value(argc, argv, i));
+    else if (a == "--margins") o.margins = parse_list<double>(option_value(argc, argv, i));
+    else if (a == "--dts") o.dts = parse_list<double>(option_value(argc, argv, i));
+    else if (a == "--steps") o.steps = std::stol(option_value(argc, argv, i));
+    else if (a == "--csv") o.csv = option_value(argc, argv, i);
+    else usage_exit(argv[0], usage, a);
+  }
+  if (o.scene != "pile" && o.scene != "column") usage_exit(argv[0], usage, "--scene " + o.scene);
+  try {
+    const std::string gpu = print_banner("gpusolve atlas: whole World steps, time per step against accuracy");
+    std::FILE* csv = open_csv(
+        o.csv,
+        "scene,n,mass_ratio,method,budget,margin,dt,steps,ms_per_step_mean,ms_per_step_median,contacts,colours,"
+        "max_penetration,residual_median,iterations_mean,capped_steps,diverged_steps,kinetic_energy,height,verdict,"
+        "gpu");
+    const std::vector<double> ratios = o.scene == "column" ? o.ratios : std::vector<double>{1};
+    const std::vector<std::size_t> ns = o.scene == "column" ? std::vector<std::size_t>{10} : o.n;
+    for (std::size_t n : ns)
+      for (double ratio : ratios)
+        for (double dt : o.dts)
+          for (double margin : o.margins)
+            for (const auto& method : o.methods)
+              for (const auto& budget : o.budgets) {
+                Run r{o.scene, method, budget, n, ratio, margin, dt, o.steps};
+                if (r.steps == 0) r.steps = o.scene == "column" ? 2000 : (n <= 10000 ? 1200 : 900);
+                if (r.margin < 0) r.margin = double(SolverSettings<T>{}.margin);
+                std::printf("... %s n=%zu ratio=%g %s %s margin=%g dt=%g, %ld steps\n", r.scene.c_str(), n, ratio,
+                            method.c_str(), budget.c_str(), r.margin, dt, r.steps);
+                std::fflush(stdout);
+                const Result x = dispatch(r);
+                std::printf("    %.3f ms/step (median %.3f), penetration %.4f%%, residual %.3g, %.1f iterations, "
+                            "%zu contacts, %zu colours, capped %zu, diverged %zu: %s\n",
+                            x.ms_mean, x.ms_median, 100 * x.penetration, x.residual, x.iterations, x.contacts,
+                            x.colours, x.capped, x.diverged, verdict(r, x));
+                std::fflush(stdout);
+                if (csv)
+                  std::fprintf(csv, "%s,%zu,%g,%s,%s,%g,%g,%ld,%.4f,%.4f,%zu,%zu,%.6g,%.4g,%.2f,%zu,%zu,%.6g,%.4f,%s,%s\n",
+                               r.scene.c_str(), n, ratio, method.c_str(), budget.c_str(), r.margin, dt, r.steps,
+                               x.ms_mean, x.ms_median, x.contacts, x.colours, x.penetration, x.residual, x.iterations,
+                               x.capped, x.diverged, x.kinetic, x.height, verdict(r, x), gpu.c_str());
+              }
+    if (csv) std::fclose(csv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "gpusolve_bench_atlas: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
