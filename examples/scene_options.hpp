@@ -37,7 +37,7 @@ struct Options {
   std::optional<long> steps, scale, max_iterations, check_every;
   std::optional<double> dt, tolerance, friction;
   double omega = 0;          // 0: the solver's default (Jacobi 0.5, Gauss-Seidel 1)
-  std::string solver = "gauss-seidel";
+  std::string solver = "jacobi";
   std::string friction_model = "cone";
   double margin = 0.1;       // contact distance: pairs closer than this take part in the solve
   long max_retries = 3;      // restarts of a diverging solve at half the omega
@@ -92,7 +92,7 @@ inline std::string usage(const std::string& accumulations, const std::string& de
        "                        hopper's warm-up (50%) scale with it\n"
        "  --scale N             number of spheres [scene]\n"
        "  --dt X                time step in seconds [scene]\n"
-       "  --solver NAME         gauss-seidel (coloured, parallel) or jacobi (thesis 5.2) [gauss-seidel]\n"
+       "  --solver NAME         jacobi (thesis 5.2) or gauss-seidel (coloured, parallel) [jacobi]\n"
        "  --omega X             relaxation of the projected update, in [0, 2); 0: the solver's\n"
        "                        own (Jacobi 0.5, thesis: 0.2 to 0.7; Gauss-Seidel 1) [0]\n"
        "  --max-retries N       a diverging solve restarts from its start at half the omega,\n"

@@ -51,7 +51,7 @@ TEST_CASE("warm start: a settling pile needs fewer iterations, penetration stays
     set.add_plane({1, 0, 0}, -0.51), set.add_plane({-1, 0, 0}, -L);
     set.add_plane({0, 1, 0}, -0.51), set.add_plane({0, -1, 0}, -L);
     SolverSettings<double> s;
-    s.check_every = 10, s.warm_start = warm;
+    s.check_every = 10, s.warm_start = warm, s.max_iterations = 2000;  // counts iterations to convergence
     World<device::cpu, double> w(set, s);
     double iterations = 0, worst = 0;
     for (int i = 0; i < 200; ++i) {
