@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""Charts the CSVs of gpusolve_bench_atlas (bench/atlas.cu).
+
+  pile:      time per step against the largest penetration and against the
+             median LCP residual, one line per method and margin, one panel
+             per pile size (log-log);
+  column:    iterations per step to the tolerance against the mass ratio;
+  stability: method x time step x mass ratio, each cell converged, capped or
+             diverged, with its mean iterations.
+
+Usage: python3 tools/plot_atlas.py pile CSV [CSV ...] -o pile.png
+       python3 tools/plot_atlas.py stability CSV [CSV ...] -o stability.png
+"""
+import argparse
+import csv
+import sys
+
+
+def read(paths):
+    rows = []
+    for p in paths:
+        with open(p, newline="") as f:
+            rows.extend(csv.DictReader(f))
+    return rows
+
+
+def pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def budget_label(b):
+    """Iterations for "itK"; "default" for SolverSettings{} as shipped."""
+    return b[2:] if b.startswith("it") else b
+
+
+def plot_pile(rows, out):
+    plt = pyplot()
+    sizes = sorted({int(r["n"]) for r in rows if r["scene"] == "pile"})
+    fig, axes = plt.subplots(2, len(sizes), figsize=(6 * len(sizes), 9), squeeze=False)
+    gpu = rows[0]["gpu"]
+    for col, n in enumerate(sizes):
+        lines = {}
+        for r in rows:
+            if r["scene"] != "pile" or int(r["n"]) != n or r["verdict"] == "diverged":
+                continue
+            lines.setdefault((r["method"], float(r["margin"])), []).append(r)
+        for (method, margin), pts in sorted(lines.items()):
+            pts.sort(key=lambda r: float(r["ms_per_step_mean"]))
+            t = [float(r["ms_per_step_mean"]) for r in pts]
+            label = f"{method}, margin {margin:g}"
+            for row, key, scale in ((0, "max_penetration", 100), (1, "residual_median", 1)):
+                ax = axes[row][col]
+                y = [scale * float(r[key]) for r in pts]
+                ax.plot(t, y, marker="o", label=label)
+                for r, x, v in zip(pts, t, y):
+                    ax.annotate(budget_label(r["budget"]), (x, v), textcoords="offset points", xytext=(4, 4),
+                                fontsize=7)
+        for row, what in ((0, "largest penetration (% of radius), last 200 steps"), (1, "LCP residual (m/s), median")):
+            ax = axes[row][col]
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("time per whole step (ms)")
+            ax.set_ylabel(what)
+            ax.set_title(f"shared pile, {n} spheres")
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=8)
+        axes[0][col].axhline(0.25, color="grey", linestyle="--", linewidth=1)
+    fig.suptitle(f"gpusolve atlas on {gpu}: time per step against accuracy (labels: iterations per step)")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+def plot_stability(rows, out):
+    plt = pyplot()
+    rows = [r for r in rows if r["scene"] == "column" and r["budget"].startswith("tol")]
+    methods = sorted({r["method"] for r in rows})
+    dts = sorted({float(r["dt"]) for r in rows})
+    ratios = sorted({float(r["mass_ratio"]) for r in rows})
+    colour = {"converged": "#6cc26c", "capped": "#f0c040", "diverged": "#e05050"}
+    fig, axes = plt.subplots(1, len(methods), figsize=(5.5 * len(methods), 4), squeeze=False)
+    for ax, m in zip(axes[0], methods):
+        for r in rows:
+            if r["method"] != m:
+                continue
+            x, y = dts.index(float(r["dt"])), ratios.index(float(r["mass_ratio"]))
+            ax.add_patch(plt.Rectangle((x - 0.5, y - 0.5), 1, 1, color=colour[r["verdict"]]))
+            ax.text(x, y, f"{r['verdict']}\n{float(r['iterations_mean']):.0f} it\n{100 * float(r['max_penetration']):.3f}%",
+                    ha="center", va="center", fontsize=7)
+        ax.set_xlim(-0.5, len(dts) - 0.5)
+        ax.set_ylim(-0.5, len(ratios) - 0.5)
+        ax.set_xticks(range(len(dts)), [f"{d:g}" for d in dts])
+        ax.set_yticks(range(len(ratios)), [f"1:{r:g}" for r in ratios])
+        ax.set_xlabel("time step (s)")
+        ax.set_ylabel("mass ratio of the column")
+        ax.set_title(f"{m}, tolerance {rows[0]['budget'][3:]}, cap 2000")
+    fig.suptitle(f"Stability map, ten-sphere column, on {rows[0]['gpu']}")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("chart", choices=["pile", "stability"])
+    ap.add_argument("csv", nargs="+")
+    ap.add_argument("-o", "--out", required=True)
+    a = ap.parse_args(argv)
+    rows = read(a.csv)
+    if not rows:
+        sys.exit("plot_atlas: no rows in " + ", ".join(a.csv))
+    (plot_pile if a.chart == "pile" else plot_stability)(rows, a.out)
+    print("wrote", a.out)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
