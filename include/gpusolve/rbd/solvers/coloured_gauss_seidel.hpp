@@ -12,6 +12,7 @@
 #include "gpusolve/rbd/contacts/contacts.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/solvers/contact_solver_base.hpp"
 #include "gpusolve/rbd/solvers/convergence.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
 #include "gpusolve/rbd/solvers/solver.hpp"
@@ -61,64 +62,62 @@ struct GaussSeidelApply {
 // colour per iteration. Deterministic on both backends. Same contract as every
 // solver (solver.hpp).
 template <class Device, class T, class Model>
-class ColouredGaussSeidelSolver {
+class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
+  using Base = ContactSolverBase<Device, T, Model>;
+
  public:
   static constexpr double default_omega = 1.0;
-  using BodyStore = Bodies<Device, T>;
-  using ContactStore = Contacts<Device, T, Model>;
-  using BV = typename BodyStore::View;
-  using CV = typename ContactStore::View;
+  using typename Base::BodyStore;
+  using typename Base::BV;
+  using typename Base::ContactStore;
+  using typename Base::CV;
 
   SolverStats<T> solve(BodyStore& bodies, ContactStore& contacts, const SolverSettings<T>& s,
                        stream_t stream = stream_t{}, bool from_x = false) {
-    s.validate();
     SolverStats<T> stats;
-    stats.contacts = contacts.size();
-    const std::size_t nc = contacts.size();
-    if (nc == 0) return stats;
-    const Device dev{};
     const BV b = bodies.view();
     const CV c = contacts.view();
-    detail::ensure_size(rhs_, nc, Model::rows);
-    detail::ensure_size(residual_, nc);
-    launch(dev, nc, InverseBlocks<Model, BV, CV, T>{b, c}, stream);
+    if (!this->begin(b, c, s, stats, stream)) return stats;
+    const std::size_t nc = c.size();
+    const Device dev{};
     colouring_.build(b, c, stream);
     stats.colours = colouring_.colours();
     const std::uint32_t* order = colouring_.order();
     const detail::DirectSink<BV, T> sink{b};
+    // Runs f(colour's first position) over each colour's contacts, colour by colour.
+    auto sweep = [&](auto make) {
+      for (std::size_t k = 0; k < colouring_.colours(); ++k)
+        launch(dev, colouring_.offset(k + 1) - colouring_.offset(k), make(colouring_.offset(k)), stream);
+    };
 
     auto attempt = [&](T omega, SolverStats<T>& st) {
       if (from_x && st.retries == 0) {
-        for (std::size_t k = 0; k < colouring_.colours(); ++k)
-          launch(dev, colouring_.offset(k + 1) - colouring_.offset(k),
-                 detail::GaussSeidelApply<Model, BV, CV, T>{{b, c, sink}, order, colouring_.offset(k)}, stream);
+        sweep([&](std::size_t first) {
+          return detail::GaussSeidelApply<Model, BV, CV, T>{{b, c, sink}, order, first};
+        });
       } else {
         contacts.x.fill(T(0), stream);
       }
       ConvergenceMonitor<T> monitor(s, st);
-      const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs_.view(), T(1) / s.dt, s.correction};
+      const CalcNextPhi<Model, BV, CV, T> phi{b, c, this->rhs_.view(), T(1) / s.dt, s.correction};
       for (std::size_t it = 1;; ++it) {
         const bool measure = monitor.checks(it);
         const ResolveCollisions<Model, BV, CV, detail::DirectSink<BV, T>, T> resolve{
-            b, c, rhs_.view(), sink, omega, measure, residual_.view()};
-        for (std::size_t k = 0; k < colouring_.colours(); ++k)
-          launch(dev, colouring_.offset(k + 1) - colouring_.offset(k),
-                 detail::GaussSeidelContact<Model, BV, CV, T>{phi, resolve, order, colouring_.offset(k)}, stream);
-        if (measure && monitor.stop(it, check_(b, residual_.view(), nc, stream))) break;
+            b, c, this->rhs_.view(), sink, omega, measure, this->residual_.view()};
+        sweep([&](std::size_t first) {
+          return detail::GaussSeidelContact<Model, BV, CV, T>{phi, resolve, order, first};
+        });
+        if (measure && monitor.stop(it, this->residual(b, nc, stream))) break;
       }
     };
-    solve_relaxed(s, omega_of<ColouredGaussSeidelSolver>(s), b, start_, stats, attempt, stream);
+    solve_relaxed(s, omega_of<ColouredGaussSeidelSolver>(s), b, this->start_, stats, attempt, stream);
     return stats;
   }
 
   const ContactColouring<Device>& colouring() const { return colouring_; }
 
  private:
-  VectorD2<T, device_is<Device>> rhs_;
-  VectorD1<T, device_is<Device>> residual_;
   ContactColouring<Device> colouring_;
-  VelocitySnapshot<Device, T> start_;
-  ResidualCheck<Device, T> check_;
 };
 
 // The method tag (solver.hpp).

@@ -10,6 +10,7 @@
 #include "gpusolve/rbd/solvers/accumulation.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/solvers/contact_solver_base.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
 #include "gpusolve/rbd/solvers/convergence.hpp"
 #include "gpusolve/rbd/detail/reduce.hpp"
@@ -34,33 +35,30 @@ namespace gpusolve::rbd {
 // needs no copy of it. Scratch storage is kept between calls. Strategy:
 // UpdateCache, Atomic or Gather (accumulation.hpp).
 template <class Device, class T, class Model, class Strategy = Gather>
-class JacobiSolver {
+class JacobiSolver : public ContactSolverBase<Device, T, Model> {
+  using Base = ContactSolverBase<Device, T, Model>;
+
  public:
   static constexpr double default_omega = 0.5;  // undamped Jacobi diverges on piles (thesis 5.2)
-  using BodyStore = Bodies<Device, T>;
-  using ContactStore = Contacts<Device, T, Model>;
-  using BV = typename BodyStore::View;
-  using CV = typename ContactStore::View;
+  using typename Base::BodyStore;
+  using typename Base::BV;
+  using typename Base::ContactStore;
+  using typename Base::CV;
 
   SolverStats<T> solve(BodyStore& bodies, ContactStore& contacts, const SolverSettings<T>& s,
                        stream_t stream = stream_t{}, bool from_x = false) {
-    s.validate();
     SolverStats<T> stats;
-    stats.contacts = contacts.size();
-    const std::size_t nc = contacts.size();
-    if (nc == 0) return stats;  // nothing to solve: converged in zero iterations
-    const Device dev{};
     const BV b = bodies.view();
     const CV c = contacts.view();
-    detail::ensure_size(rhs_, nc, Model::rows);
-    detail::ensure_size(residual_, nc);
-    launch(dev, nc, InverseBlocks<Model, BV, CV, T>{b, c}, stream);  // independent of velocities: once
+    if (!this->begin(b, c, s, stats, stream)) return stats;
+    const std::size_t nc = c.size();
+    const Device dev{};
     acc_.prepare(b, c, stream);
     stats.reduction_passes = acc_.passes();
 
     using Sink = decltype(acc_.sink());
-    const auto rhs = rhs_.view();
-    const auto residual = residual_.view();
+    const auto rhs = this->rhs_.view();
+    const auto residual = this->residual_.view();
     auto attempt = [&](T omega, SolverStats<T>& st) {
       if (from_x && st.retries == 0) {
         launch(dev, nc, ApplyImpulses<Model, BV, CV, Sink, T>{b, c, acc_.sink()}, stream);
@@ -75,19 +73,15 @@ class JacobiSolver {
         launch(dev, nc, ResolveCollisions<Model, BV, CV, Sink, T>{b, c, rhs, acc_.sink(), omega, measure, residual},
                stream);
         acc_.apply(b, stream);
-        if (measure && monitor.stop(it, check_(b, residual, nc, stream))) break;
+        if (measure && monitor.stop(it, this->residual(b, nc, stream))) break;
       }
     };
-    solve_relaxed(s, omega_of<JacobiSolver>(s), b, start_, stats, attempt, stream);
+    solve_relaxed(s, omega_of<JacobiSolver>(s), b, this->start_, stats, attempt, stream);
     return stats;
   }
 
  private:
-  VectorD2<T, device_is<Device>> rhs_;
-  VectorD1<T, device_is<Device>> residual_;
   Accumulator<Strategy, Device, T> acc_;
-  VelocitySnapshot<Device, T> start_;
-  ResidualCheck<Device, T> check_;
 };
 
 // The method tag of projected Jacobi (a model of the Solver concept, solver.hpp).

@@ -1,0 +1,54 @@
+// ContactSolverBase: the state and the first steps every projected contact solver shares.
+#pragma once
+
+#include <cstddef>
+
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/core/launch.hpp"
+#include "gpusolve/rbd/bodies/bodies.hpp"
+#include "gpusolve/rbd/contacts/contacts.hpp"
+#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/solvers/convergence.hpp"
+#include "gpusolve/rbd/solvers/relaxation.hpp"
+#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/statistics/solver_stats.hpp"
+
+namespace gpusolve::rbd {
+
+// Scratch kept between solves (each contact's velocity error and residual, the
+// start velocities for a retry, the residual reduction) and begin(): validate
+// the settings, size the scratch and compute each contact's inverse block.
+template <class Device, class T, class Model>
+class ContactSolverBase {
+ public:
+  using BodyStore = Bodies<Device, T>;
+  using ContactStore = Contacts<Device, T, Model>;
+  using BV = typename BodyStore::View;
+  using CV = typename ContactStore::View;
+
+ protected:
+  // Returns false when there is nothing to solve (no contacts: converged in
+  // zero iterations). Throws InvalidArgumentError for bad settings.
+  bool begin(const BV& b, const CV& c, const SolverSettings<T>& s, SolverStats<T>& stats, stream_t stream) {
+    s.validate();
+    stats.contacts = c.size();
+    if (c.size() == 0) return false;
+    detail::ensure_size(rhs_, c.size(), Model::rows);
+    detail::ensure_size(residual_, c.size());
+    launch(Device{}, c.size(), InverseBlocks<Model, BV, CV, T>{b, c}, stream);  // independent of velocities: once
+    return true;
+  }
+  // The largest residual of this iteration's contacts (+inf for a non-finite velocity).
+  T residual(const BV& b, std::size_t contacts, stream_t stream) { return check_(b, residual_.view(), contacts, stream); }
+
+  VectorD2<T, device_is<Device>> rhs_;
+  VectorD1<T, device_is<Device>> residual_;
+  VelocitySnapshot<Device, T> start_;
+
+ private:
+  ResidualCheck<Device, T> check_;
+};
+
+}  // namespace gpusolve::rbd
