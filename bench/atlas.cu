@@ -3,7 +3,7 @@
 // penetration and the LCP residual it bought, and whether each step converged.
 //
 // Run: gpusolve_bench_atlas --scene pile|column [--n 10000,100000] [--ratios 1,100,1000]
-//        [--methods gauss-seidel,jacobi] [--budgets default,it10,it20,tol0.02] [--margins 0.1]
+//        [--methods gauss-seidel,jacobi,apgd] [--budgets default,it10,it20,tol0.02] [--margins 0.1]
 //        [--dts 0.0025] [--steps N] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, PILE.md), N spheres dropped into
@@ -134,7 +134,8 @@ Result run(const Run& r) {
 Result dispatch(const Run& r) {
   if (r.method == "gauss-seidel") return run<rbd::ColouredGaussSeidel>(r);
   if (r.method == "jacobi") return run<rbd::Jacobi<rbd::Gather>>(r);
-  throw InvalidArgumentError("atlas: unknown method '" + r.method + "' (gauss-seidel or jacobi)");
+  if (r.method == "apgd") return run<rbd::AcceleratedJacobi<rbd::Gather>>(r);
+  throw InvalidArgumentError("atlas: unknown method '" + r.method + "' (gauss-seidel, jacobi or apgd)");
 }
 
 const char* verdict(const Run& r, const Result& x) {

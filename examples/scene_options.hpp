@@ -92,9 +92,10 @@ inline std::string usage(const std::string& accumulations, const std::string& de
        "                        hopper's warm-up (50%) scale with it\n"
        "  --scale N             number of spheres [scene]\n"
        "  --dt X                time step in seconds [scene]\n"
-       "  --solver NAME         jacobi (thesis 5.2) or gauss-seidel (coloured, parallel) [jacobi]\n"
+       "  --solver NAME         jacobi (thesis 5.2), apgd (Nesterov-accelerated) or\n"
+       "                        gauss-seidel (coloured, parallel) [jacobi]\n"
        "  --omega X             relaxation of the projected update, in [0, 2); 0: the solver's\n"
-       "                        own (Jacobi 0.5, thesis: 0.2 to 0.7; Gauss-Seidel 1) [0]\n"
+       "                        own (Jacobi 0.5, thesis: 0.2 to 0.7; APGD 0.3; Gauss-Seidel 1) [0]\n"
        "  --max-retries N       a diverging solve restarts from its start at half the omega,\n"
        "                        up to N times; 0 reports the divergence at once [3]\n"
        "  --warm-start X        a contact that persists starts its solve from X times its last\n"
@@ -205,7 +206,7 @@ inline Options parse_options(int argc, const char* const* argv, const std::vecto
     else if (a == "--accumulation") o.accumulation = one_of(a, next(), accumulations);
     else if (a == "--friction") o.friction = parse_double(a, next(), 0.0, false);
     else if (a == "--friction-model") o.friction_model = one_of(a, next(), {"cone", "pyramid"});
-    else if (a == "--solver") o.solver = one_of(a, next(), {"gauss-seidel", "jacobi"});
+    else if (a == "--solver") o.solver = one_of(a, next(), {"gauss-seidel", "jacobi", "apgd"});
     else if (a == "--seed") o.seed = static_cast<std::uint64_t>(parse_long(a, next(), 0));
     else if (a == "--out") {
       o.out = next();

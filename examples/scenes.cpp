@@ -106,7 +106,7 @@ int run(const Options& o, AnyScene& scene, const std::string& device_name) {
 
   const bool gpu = std::is_same_v<Device, gpusolve::device::gpu>;
   const std::string accumulation =
-      o.solver != "jacobi" ? "none" : o.accumulation.empty() ? accumulation_names[0] : o.accumulation;
+      o.solver == "gauss-seidel" ? "none" : o.accumulation.empty() ? accumulation_names[0] : o.accumulation;
   RunRecord record(o.out, o.csv_every);
   Progress progress(o.scene, *o.steps, o.status_every, o.quiet);
   if (!o.quiet)
@@ -151,6 +151,7 @@ int run(const Options& o, AnyScene& scene, const std::string& device_name) {
 template <class Device, class Model>
 int with_method(const Options& o, AnyScene& scene, const std::string& dev) {
   if (o.solver == "gauss-seidel") return run<Device, Model, rbd::ColouredGaussSeidel>(o, scene, dev);
+  if (o.solver == "apgd") return run<Device, Model, rbd::AcceleratedJacobi<rbd::Gather>>(o, scene, dev);
   const std::string& a = o.accumulation.empty() ? accumulation_names[0] : o.accumulation;
   if (a == "cache") return run<Device, Model, rbd::Jacobi<rbd::UpdateCache>>(o, scene, dev);
   if (a == "atomic") return run<Device, Model, rbd::Jacobi<rbd::Atomic>>(o, scene, dev);

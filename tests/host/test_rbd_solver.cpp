@@ -45,7 +45,7 @@ std::string error_of(F&& f) {
 
 }  // namespace
 
-TEST_CASE("Jacobi (every strategy), coloured Gauss-Seidel and the sequential reference converge to the same impulses", "[rbd_solver]") {
+TEST_CASE("Jacobi (every strategy), APGD, coloured Gauss-Seidel and the sequential reference converge to the same impulses", "[rbd_solver]") {
   auto set = pile<double>(2, 2);  // 8 spheres, frictionless: a unique solution
   const SolverSettings<double> s = tight();
   Store gs_store(set);
@@ -77,6 +77,19 @@ TEST_CASE("Jacobi (every strategy), coloured Gauss-Seidel and the sequential ref
   check(UpdateCache{});
   check(Atomic{});
   check(Gather{});
+  {
+    Store st(set);
+    st.syncDeviceFull();
+    Contacts<device::cpu, double, Frictionless> c;
+    prepare_solve(st.device(), c, s);
+    SolverSettings<double> a = s;
+    a.omega = 0;  // APGD's default
+    const auto stats = JacobiSolver<device::cpu, double, Frictionless, Gather, Nesterov>().solve(st.device(), c, a);
+    REQUIRE(stats.status == SolverStatus::converged);
+    CHECK(stats.omega == Approx(0.3));
+    CHECK(max_abs_diff(impulses(c), x_ref) < 1e-7 * largest);
+    CHECK(max_abs_diff(velocities(st.device()), v_ref) < 1e-8);
+  }
 
   Store cs(set);
   cs.syncDeviceFull();
@@ -322,4 +335,5 @@ void check_bad_settings() {
 TEST_CASE("bad solver settings give InvalidArgumentError naming the field, for every method", "[rbd_solver]") {
   check_bad_settings<Jacobi<Gather>>();
   check_bad_settings<ColouredGaussSeidel>();
+  check_bad_settings<AcceleratedJacobi<Gather>>();
 }

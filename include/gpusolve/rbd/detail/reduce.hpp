@@ -76,4 +76,37 @@ class MaxReducer {
   VectorD1<T, device_is<Device>> out_;
 };
 
+// Sums f(0) ... f(n-1) into *out, memory of the backend, in stream order and
+// without the host waiting: a solver's scalars can stay on the device. GPU:
+// CUB's TransformReduce into temporary storage kept here; host: a loop.
+template <class Device, class T>
+class SumInto {
+ public:
+  template <class F>
+  void operator()(std::size_t n, F f, T* out, stream_t stream = stream_t{}) {
+    if constexpr (std::is_same_v<Device, device::cpu>) {
+      (void)stream;
+      T s = T(0);
+      for (std::size_t i = 0; i < n; ++i) s += f(i);
+      *out = s;
+    } else {
+#if GPUSOLVE_HAS_NVCC
+      const thrust::counting_iterator<std::size_t> first(0);
+      std::size_t bytes = 0;
+      GPUSOLVE_CUDA_CHECK(
+          cub::DeviceReduce::TransformReduce(nullptr, bytes, first, out, n, thrust::plus<T>(), f, T(0), stream));
+      if (temp_.size_x() < bytes) temp_.resize(bytes);
+      GPUSOLVE_CUDA_CHECK(
+          cub::DeviceReduce::TransformReduce(temp_.data(), bytes, first, out, n, thrust::plus<T>(), f, T(0), stream));
+#else
+      (void)n, (void)f, (void)out, (void)stream;
+      throw UnsupportedError("gpusolve: a reduction on device::gpu needs this translation unit compiled by nvcc");
+#endif
+    }
+  }
+
+ private:
+  VectorD1<std::uint8_t, device_is<Device>> temp_;
+};
+
 }  // namespace gpusolve::rbd

@@ -16,7 +16,7 @@ struct SolverSettings {
   T dt = T(0.0025);            // time step (s)
   // Relaxation of the projected update, in [0, 2); 0 takes the method's own
   // default (Jacobi 0.5, under-relaxed as in thesis 5.2, which used 0.2 to 0.7;
-  // Gauss-Seidel 1).
+  // APGD 0.3; Gauss-Seidel 1).
   T omega = T(0);
   T tolerance = T(5e-3);       // stop when the LCP residual (m/s, see contact_kernels.hpp) is below
   // 100: on the shared 100 000-sphere pile (bench/atlas.cu, README) Jacobi's
@@ -67,8 +67,8 @@ struct SolverSettings {
     if (!(divergence_growth >= 1)) bad("divergence_growth", "must be at least 1");
     if (!(retry_omega_factor > 0 && retry_omega_factor < 1)) bad("retry_omega_factor", "must lie in (0, 1)");
     // The last retry's omega must still be a normal positive number of type T.
-    // Every method's default omega is at least 0.5.
-    if (!((omega > 0 ? omega : T(0.5)) * std::pow(retry_omega_factor, T(max_retries)) >= std::numeric_limits<T>::min()))
+    // Every method's default omega is at least 0.3.
+    if (!((omega > 0 ? omega : T(0.3)) * std::pow(retry_omega_factor, T(max_retries)) >= std::numeric_limits<T>::min()))
       bad("max_retries", "makes omega * retry_omega_factor^max_retries underflow");
     for (T g : gravity)
       if (!std::isfinite(g)) bad("gravity", "must be finite");
