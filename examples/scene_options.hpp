@@ -37,7 +37,7 @@ struct Options {
   std::optional<long> steps, scale, max_iterations, check_every;
   std::optional<double> dt, tolerance, friction;
   double omega = 0;          // 0: the solver's default (Jacobi 0.5, Gauss-Seidel 1)
-  std::string solver = "jacobi";
+  std::string solver = "apgd";
   std::string friction_model = "cone";
   double margin = 0.1;       // contact distance: pairs closer than this take part in the solve
   long max_retries = 3;      // restarts of a diverging solve at half the omega
@@ -92,8 +92,9 @@ inline std::string usage(const std::string& accumulations, const std::string& de
        "                        hopper's warm-up (50%) scale with it\n"
        "  --scale N             number of spheres [scene]\n"
        "  --dt X                time step in seconds [scene]\n"
-       "  --solver NAME         jacobi (thesis 5.2), apgd (Nesterov-accelerated) or\n"
-       "                        gauss-seidel (coloured, parallel) [jacobi]\n"
+       "  --solver NAME         jacobi (thesis 5.2), apgd (Nesterov-accelerated),\n"
+       "                        gauss-seidel (coloured, parallel) or substepping (4 APGD\n"
+       "                        substeps) [apgd]\n"
        "  --omega X             relaxation of the projected update, in [0, 2); 0: the solver's\n"
        "                        own (Jacobi 0.5, thesis: 0.2 to 0.7; APGD 0.3; Gauss-Seidel 1) [0]\n"
        "  --max-retries N       a diverging solve restarts from its start at half the omega,\n"
@@ -206,7 +207,7 @@ inline Options parse_options(int argc, const char* const* argv, const std::vecto
     else if (a == "--accumulation") o.accumulation = one_of(a, next(), accumulations);
     else if (a == "--friction") o.friction = parse_double(a, next(), 0.0, false);
     else if (a == "--friction-model") o.friction_model = one_of(a, next(), {"cone", "pyramid"});
-    else if (a == "--solver") o.solver = one_of(a, next(), {"gauss-seidel", "jacobi", "apgd"});
+    else if (a == "--solver") o.solver = one_of(a, next(), {"gauss-seidel", "jacobi", "apgd", "substepping"});
     else if (a == "--seed") o.seed = static_cast<std::uint64_t>(parse_long(a, next(), 0));
     else if (a == "--out") {
       o.out = next();

@@ -152,6 +152,7 @@ template <class Device, class Model>
 int with_method(const Options& o, AnyScene& scene, const std::string& dev) {
   if (o.solver == "gauss-seidel") return run<Device, Model, rbd::ColouredGaussSeidel>(o, scene, dev);
   if (o.solver == "apgd") return run<Device, Model, rbd::AcceleratedJacobi<rbd::Gather>>(o, scene, dev);
+  if (o.solver == "substepping") return run<Device, Model, rbd::Substepping<>>(o, scene, dev);
   const std::string& a = o.accumulation.empty() ? accumulation_names[0] : o.accumulation;
   if (a == "cache") return run<Device, Model, rbd::Jacobi<rbd::UpdateCache>>(o, scene, dev);
   if (a == "atomic") return run<Device, Model, rbd::Jacobi<rbd::Atomic>>(o, scene, dev);

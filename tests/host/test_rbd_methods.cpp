@@ -1,7 +1,7 @@
 // Every solver method on the CPU backend: contact colouring, the isotropic
 // friction cone (a sphere sliding in any direction), impulses inside their cone,
 // and a column of alternating light and heavy spheres, for Jacobi, coloured
-// Gauss-Seidel and APGD.
+// Gauss-Seidel, APGD and substepping.
 #include <cmath>
 #include <cstdint>
 #include <set>
@@ -112,6 +112,7 @@ TEST_CASE("cone friction: a sphere sliding in any direction stops slipping at 2 
   check_cone_sliding<Jacobi<Gather>>();
   check_cone_sliding<ColouredGaussSeidel>();
   check_cone_sliding<AcceleratedJacobi<Gather>>();
+  check_cone_sliding<Substepping<>>();
 }
 
 TEST_CASE("the pyramid's friction depends on the direction of sliding (the cone's does not)", "[rbd_methods]") {
@@ -156,6 +157,7 @@ TEST_CASE("every method keeps each impulse inside its friction cone", "[rbd_meth
   check_impulses_in_cone<Jacobi<Gather>>();
   check_impulses_in_cone<ColouredGaussSeidel>();
   check_impulses_in_cone<AcceleratedJacobi<Gather>>();
+  check_impulses_in_cone<Substepping<>>();
 }
 
 namespace {
@@ -194,8 +196,8 @@ ColumnRun column(double ratio, int steps) {
 
 TEST_CASE("a column of spheres with masses 1 and 1000 stands under every method", "[rbd_methods]") {
   for (double ratio : {1.0, 1000.0}) {
-    const ColumnRun runs[3] = {column<Jacobi<Gather>>(ratio, 400), column<ColouredGaussSeidel>(ratio, 400),
-                               column<AcceleratedJacobi<Gather>>(ratio, 400)};
+    const ColumnRun runs[4] = {column<Jacobi<Gather>>(ratio, 400), column<ColouredGaussSeidel>(ratio, 400),
+                               column<AcceleratedJacobi<Gather>>(ratio, 400), column<Substepping<>>(ratio, 400)};
     for (const ColumnRun& c : runs) {
       INFO("mass ratio " << ratio << ": sank " << c.sank << ", penetration " << c.penetration << ", "
                          << c.iterations << " iterations per step");
@@ -203,10 +205,39 @@ TEST_CASE("a column of spheres with masses 1 and 1000 stands under every method"
       CHECK(c.penetration < 0.005);
     }
     // Momentum is what the heavy column needs: Jacobi and Gauss-Seidel run into
-    // the 2 000-iteration cap, APGD converges in a few hundred (about 190 here).
+    // the 2 000-iteration cap, APGD converges in a few hundred (about 190 here),
+    // four substeps of APGD in about 130 all together.
     if (ratio == 1000.0) {
       CHECK(runs[2].iterations < 400);
+      CHECK(runs[3].iterations < 400);
       CHECK(runs[0].iterations > 1000);
     }
   }
+}
+
+TEST_CASE("substepping: one substep is the inner method's step, four stay close to it", "[rbd_methods]") {
+  // Four spheres on the floor and one in their hollow, pushing them apart.
+  auto set = pile<double>(2, 1);
+  set.add_sphere({0.5, 0.5, 0.5 + std::sqrt(0.5)}, 0.5, 1.0);
+  SolverSettings<double> s;
+  s.margin = 0.02, s.tolerance = 1e-10, s.max_iterations = 40000, s.check_every = 10, s.friction = 0.4;
+  SolverSettings<double> one_substep = s;
+  one_substep.substeps = 1;
+  World<device::cpu, double, ConeFriction, Jacobi<Gather>> ref(set, s);
+  World<device::cpu, double, ConeFriction, Substepping<Jacobi<Gather>>> same(set, one_substep);
+  World<device::cpu, double, ConeFriction, Substepping<>> four(set, s);
+  for (int i = 0; i < 3; ++i) {
+    REQUIRE(ref.step().solver.status == SolverStatus::converged);
+    REQUIRE(same.step().solver.status == SolverStatus::converged);
+    const auto st = four.step();
+    REQUIRE(st.solver.status == SolverStatus::converged);
+    CHECK(st.solver.iterations > 0);
+  }
+  const auto v_ref = velocities(ref.bodies());
+  double fastest = 0;
+  for (double v : v_ref) fastest = std::fmax(fastest, std::fabs(v));
+  REQUIRE(fastest > 0.03);  // the lower spheres roll apart: a comparison of motion, not of rest
+  CHECK(max_abs_diff(velocities(same.bodies()), v_ref) < 1e-8);
+  // Four substeps integrate the same motion more finely: within a fifth of it.
+  CHECK(max_abs_diff(velocities(four.bodies()), v_ref) < 0.2 * fastest);
 }

@@ -317,6 +317,7 @@ void check_bad_settings() {
   CHECK(with([](auto& s) { s.correction = 0; }).find("`correction`") != std::string::npos);
   CHECK(with([](auto& s) { s.correction = 1.5; }).find("`correction`") != std::string::npos);
   CHECK(with([](auto& s) { s.check_every = 0; }).find("`check_every`") != std::string::npos);
+  CHECK(with([](auto& s) { s.substeps = 0; }).find("`substeps`") != std::string::npos);
   CHECK(with([](auto& s) { s.retry_omega_factor = 0; }).find("`retry_omega_factor`") != std::string::npos);
   CHECK(with([](auto& s) { s.retry_omega_factor = 1; }).find("`retry_omega_factor`") != std::string::npos);
   CHECK(with([](auto& s) { s.max_retries = 5000; }).find("`max_retries`") != std::string::npos);
@@ -336,4 +337,5 @@ TEST_CASE("bad solver settings give InvalidArgumentError naming the field, for e
   check_bad_settings<Jacobi<Gather>>();
   check_bad_settings<ColouredGaussSeidel>();
   check_bad_settings<AcceleratedJacobi<Gather>>();
+  check_bad_settings<Substepping<>>();
 }

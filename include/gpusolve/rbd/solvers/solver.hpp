@@ -37,6 +37,10 @@ namespace gpusolve::rbd {
 //  - calls settings.validate() first (InvalidArgumentError naming the field);
 //  - runs on device::cpu and device::gpu with the same __host__ __device__
 //    kernel bodies, keeping its scratch storage between calls.
+//  - a solver that also advances the bodies (substepping) declares
+//      static constexpr bool integrates = true;
+//    then solve() receives the velocities before the step's external forces and
+//    applies them, solves and moves the bodies for the whole step itself.
 // Adding a method is one header that defines its tag and solver, and its tests.
 
 template <class Method, class Device, class T, class Model>
@@ -55,6 +59,12 @@ struct is_solver<S, Device, T, Model,
                                                      std::declval<Contacts<Device, T, Model>&>(),
                                                      std::declval<const SolverSettings<T>&>(), stream_t{}, bool{})),
                    SolverStats<T>> {};
+
+// Whether solver S moves the bodies itself (see above); false when it does not say.
+template <class S, class = void>
+struct integrates : std::false_type {};
+template <class S>
+struct integrates<S, std::void_t<decltype(S::integrates)>> : std::bool_constant<S::integrates> {};
 
 // The relaxation a solve uses: the settings' omega, or the method's default when it is 0.
 template <class S, class T>

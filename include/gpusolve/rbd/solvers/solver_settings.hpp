@@ -19,11 +19,11 @@ struct SolverSettings {
   // APGD 0.3; Gauss-Seidel 1).
   T omega = T(0);
   T tolerance = T(5e-3);       // stop when the LCP residual (m/s, see contact_kernels.hpp) is below
-  // 100: on the shared 100 000-sphere pile (bench/atlas.cu, README) Jacobi's
-  // 100 iterations with warm start hold the penetration at 0.17% of the radius
-  // in 6.8 ms per step on an H200, where the tolerance alone ran to the cap of
-  // 2 000 (64 ms, 2.7%); a scene that needs a converged solve raises it.
-  std::size_t max_iterations = 100;
+  // 50: on the shared 100 000-sphere pile (bench/atlas.cu, README) 50 APGD
+  // iterations with warm start hold the penetration at 0.10% of the radius in
+  // 5.7 ms per step on an H200, where the tolerance alone ran Jacobi to its old
+  // cap of 2 000 (64 ms, 2.7%); a scene that needs converged solves raises it.
+  std::size_t max_iterations = 50;
   std::size_t check_every = 50;      // iterations between residual checks (thesis: 50)
   // Divergence: the residual grew at `divergence_checks` checks in a row (0: off)
   // and is `divergence_growth` times the smallest residual seen in the solve.
@@ -50,6 +50,9 @@ struct SolverSettings {
   // defaults otherwise) 136 iterations per step on average against 194 cold and
   // 182 at 1, which overshoots and made solves diverge and retry.
   T warm_start = T(0.8);
+  // Substeps per time step of the substepping method (solvers/substepping.hpp);
+  // the other methods ignore it. max_iterations is shared among the substeps.
+  std::size_t substeps = 4;
   bool throw_on_divergence = false;  // solve() throws DivergenceError instead of reporting it
 
   // Throws InvalidArgumentError naming the first offending field.
@@ -76,6 +79,7 @@ struct SolverSettings {
     if (!(correction > 0 && correction <= 1)) bad("correction", "must lie in (0, 1]");
     if (!(friction >= 0) || !std::isfinite(friction)) bad("friction", "must be non-negative and finite");
     if (!(warm_start >= 0 && warm_start <= 1)) bad("warm_start", "must lie in [0, 1]");
+    if (substeps == 0) bad("substeps", "must be at least 1");
   }
 };
 
