@@ -80,8 +80,12 @@ def plot_stability(rows, out):
     dts = sorted({float(r["dt"]) for r in rows})
     ratios = sorted({float(r["mass_ratio"]) for r in rows})
     colour = {"converged": "#6cc26c", "capped": "#f0c040", "diverged": "#e05050"}
-    fig, axes = plt.subplots(1, len(methods), figsize=(5.5 * len(methods), 4), squeeze=False)
-    for ax, m in zip(axes[0], methods):
+    cols = min(2, len(methods))
+    grid_rows = (len(methods) + cols - 1) // cols
+    fig, axes = plt.subplots(grid_rows, cols, figsize=(6.5 * cols, 4.2 * grid_rows), squeeze=False)
+    for ax in axes.flat[len(methods):]:
+        ax.set_visible(False)
+    for ax, m in zip(axes.flat, methods):
         for r in rows:
             if r["method"] != m:
                 continue

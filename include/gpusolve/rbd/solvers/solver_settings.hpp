@@ -21,7 +21,7 @@ struct SolverSettings {
   T tolerance = T(5e-3);       // stop when the LCP residual (m/s, see contact_kernels.hpp) is below
   // 50: on the shared 100 000-sphere pile (bench/atlas.cu, README) 50 APGD
   // iterations with warm start hold the penetration at 0.10% of the radius in
-  // 5.7 ms per step on an H200, where the tolerance alone ran Jacobi to its old
+  // 5.7 to 6.0 ms per step on an H200, where the tolerance alone ran Jacobi to its old
   // cap of 2 000 (64 ms, 2.7%); a scene that needs converged solves raises it.
   std::size_t max_iterations = 50;
   std::size_t check_every = 50;      // iterations between residual checks (thesis: 50)
