@@ -241,3 +241,53 @@ TEST_CASE("substepping: one substep is the inner method's step, four stay close 
   // Four substeps integrate the same motion more finely: within a fifth of it.
   CHECK(max_abs_diff(velocities(four.bodies()), v_ref) < 0.2 * fastest);
 }
+
+TEST_CASE("contact colouring past 64 colours: a body with 80 contacts needs 80", "[rbd_methods]") {
+  // 80 small spheres touching one large one: every contact shares the large
+  // body, so each needs a colour of its own, beyond the first-fit mask's 64.
+  // Past 64 the colour is 64 + the round it was picked in, so some numbers stay
+  // empty; an empty colour costs an empty launch.
+  BodySet<double> set;
+  set.add_sphere({0, 0, 0}, 10.0, 100.0);
+  for (int k = 0; k < 80; ++k) {
+    const double z = -1 + (2 * k + 1) / 80.0, rho = std::sqrt(1 - z * z), phi = 2.399963 * k;  // golden angle
+    const double R = 10.0 + 0.2 - 1e-3;
+    set.add_sphere({R * rho * std::cos(phi), R * rho * std::sin(phi), R * z}, 0.2, 1.0);
+  }
+  BodyManager<device::cpu, double> m(set);
+  m.syncDeviceFull();
+  Contacts<device::cpu, double, Frictionless> c;
+  CollisionDetection<device::cpu, double> cd;
+  cd.detect(m.device(), c, 0.01);
+  REQUIRE(c.size() == 80);
+  ContactColouring<device::cpu> col;
+  col.build(m.device().view(), c.view());
+  REQUIRE(col.colours() >= 80);
+  std::size_t used = 0;
+  for (std::size_t k = 0; k < col.colours(); ++k) {
+    const std::size_t size = col.offset(k + 1) - col.offset(k);
+    REQUIRE(size <= 1);
+    used += size;
+  }
+  CHECK(used == 80);
+  CHECK(col.offset(col.colours()) == 80);
+}
+
+TEST_CASE("every method returns at once, converged, when there are no contacts", "[rbd_methods]") {
+  auto check = [](auto method) {
+    using Method = decltype(method);
+    BodySet<double> set;
+    set.add_plane({0, 0, 1}, 0);
+    set.add_sphere({0, 0, 5}, 0.5, 1.0);
+    World<device::cpu, double, ConeFriction, Method> w(set, SolverSettings<double>{});
+    const auto st = w.step();
+    CHECK(st.solver.contacts == 0);
+    CHECK(st.solver.status == SolverStatus::converged);
+    w.syncHost();
+    CHECK(set[1].v[2] == Approx(-9.81 * 0.0025));  // gravity applied once, by World or by the substeps
+  };
+  check(Jacobi<Gather>{});
+  check(AcceleratedJacobi<Gather>{});
+  check(ColouredGaussSeidel{});
+  check(Substepping<>{});
+}

@@ -104,7 +104,8 @@ struct PickColour {
 // colours as the most contacts on one body (a close-packed sphere: 12).
 // Deterministic on both backends. After build(), order() lists the contacts
 // colour by colour, colour k occupying [offset(k), offset(k + 1)); those
-// offsets are the host's, read back once per build.
+// offsets are the host's, read back once per build. Past 64 colours a colour
+// number may stay empty (see PickColour).
 template <class Device>
 class ContactColouring {
  public:
