@@ -103,6 +103,7 @@ int run(const Options& o, AnyScene& scene, const std::string& device_name) {
   s.max_retries = static_cast<std::size_t>(o.max_retries);
   s.warm_start = real(o.warm_start);
   rbd::World<Device, real, Model, Method> world(set, s);
+  world.set_phase_timing(true);  // the run record keeps each phase's time
 
   const bool gpu = std::is_same_v<Device, gpusolve::device::gpu>;
   const std::string accumulation =

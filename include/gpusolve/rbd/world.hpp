@@ -2,7 +2,6 @@
 // and step() = collision detection + contact solve + integration.
 #pragma once
 
-#include <chrono>
 #include <cstddef>
 #include <type_traits>
 
@@ -16,6 +15,11 @@
 #include "gpusolve/rbd/collision/collision_detection.hpp"
 #include "gpusolve/rbd/contact_models/contact_model.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
+#include "gpusolve/rbd/detail/device_algorithms.hpp"
+#include "gpusolve/rbd/detail/stream_marks.hpp"
+#include "gpusolve/memory/buffer.hpp"
+#include "gpusolve/memory/cuda_host_allocator.hpp"
+#include "gpusolve/memory/standard_allocator.hpp"
 #include "gpusolve/rbd/integration/integrate.hpp"
 #include "gpusolve/rbd/solvers/coloured_gauss_seidel.hpp"
 #include "gpusolve/rbd/solvers/jacobi.hpp"
@@ -26,20 +30,6 @@
 #include "gpusolve/rbd/solvers/warm_start.hpp"
 
 namespace gpusolve::rbd {
-
-namespace detail {
-
-// Waits until the backend finished the work queued on `stream` (timing per phase).
-inline void finish(device::cpu, stream_t) {}
-inline void finish(device::gpu, stream_t stream) {
-#if GPUSOLVE_HAS_CUDART
-  GPUSOLVE_CUDA_CHECK(cudaStreamSynchronize(stream));
-#else
-  (void)stream;
-#endif
-}
-
-}  // namespace detail
 
 // The bodies come from a host BodySet through a BodyManager (copied once at
 // construction; later changes are announced to manager()). Everything in step()
@@ -71,43 +61,31 @@ class World {
   }
   const SolverSettings<T>& settings() const { return settings_; }
 
+  // Runs one step and returns its statistics (waits for them).
   StepStats<T> step() {
-    using Clock = std::chrono::steady_clock;
-    auto& bodies = manager_.device();
-    const SolverSettings<T>& s = settings_;
-    const math::Vector3<T> g(s.gravity[0], s.gravity[1], s.gravity[2]);
-    StepStats<T> st;
-
-    const auto t0 = Clock::now();
-    detection_.detect(bodies, contacts_, s.margin, s.friction, stream_);
-    detail::finish(Device{}, stream_);
-    const auto t1 = Clock::now();
-    constexpr bool own_integration = !integrates<solver_type>::value;  // else the solver moves the bodies
-    if (own_integration) apply_forces(bodies, s.dt, g, stream_);  // the LCP sees v + dt M^-1 f_ext (thesis Eq. 6)
-    const bool warm = s.warm_start > 0;
-    if (warm) warm_.carry(contacts_.view(), s.warm_start, stream_);
-    st.solver = solver_.solve(bodies, contacts_, s, stream_, warm);
-    if (warm)
-      warm_.remember(contacts_.view(), stream_);
-    else
-      warm_.forget();
-    detail::finish(Device{}, stream_);
-    const auto t2 = Clock::now();
-    if (own_integration) move(bodies, s.dt, stream_);
-    detail::finish(Device{}, stream_);
-    const auto t3 = Clock::now();
-
-    using BV = typename Bodies<Device, T>::View;
-    const BV b = bodies.view();
-    st.max_penetration = max_relative_penetration<Device, T>(b, contacts_.view(), stream_);
-    st.kinetic_energy = kinetic_energy<Device, BV, T>(b, stream_);
-    st.potential_energy = potential_energy<Device, BV, T>(b, g, stream_);
-    using Sec = std::chrono::duration<double>;
-    st.time_detection = Sec(t1 - t0).count();
-    st.time_solve = Sec(t2 - t1).count();
-    st.time_integration = Sec(t3 - t2).count();
-    return st;
+    advance(1);
+    return latest_stats();
   }
+
+  // Queues `steps` steps. The host waits only where the step's sizes or the
+  // solver's verdict need it (the contact count after detection, each residual
+  // check), never for timing or statistics. Throws NonFiniteStateError naming
+  // the body and the step when a body's state holds a NaN or infinity: that
+  // step is not taken and no body changes.
+  void advance(std::size_t steps = 1) {
+    for (std::size_t k = 0; k < steps; ++k) queue_step();
+  }
+
+  // Statistics of the last step queued; waits until the backend finished it.
+  StepStats<T> latest_stats() { return steps_ == 0 ? StepStats<T>{} : stats_of(current_); }
+  // Statistics of the step before it: ready without a wait once a later step
+  // was queued (its detection waited for the device). Zero before two steps.
+  StepStats<T> previous_stats() { return steps_ < 2 ? StepStats<T>{} : stats_of(1 - current_); }
+  std::size_t steps_queued() const { return steps_; }
+
+  // Per-phase timing (StepStats::time_*): CUDA events on the GPU, which cost
+  // no wait; off by default, and the times read zero.
+  void set_phase_timing(bool on) { timing_ = on; }
 
   // Copies positions, orientations and velocities back into the BodySet.
   void syncHost() { manager_.syncHost(stream_); }
@@ -117,6 +95,63 @@ class World {
   BodyManager<Device, T>& manager() { return manager_; }
 
  private:
+  // The host side of a queued step; its figures arrive in pinned memory.
+  struct Slot {
+    StepStats<T> stats;
+    detail::StreamMarks<Device, 5> marks;  // start, detected, solved, moved, figures copied
+    bool timed = false;
+  };
+
+  void queue_step() {
+    auto& bodies = manager_.device();
+    const SolverSettings<T>& s = settings_;
+    const math::Vector3<T> g(s.gravity[0], s.gravity[1], s.gravity[2]);
+    Slot& slot = slots_[steps_ % 2];  // held the step before the previous one
+    if (timing_) slot.marks.mark(0, stream_);
+    try {
+      detection_.detect(bodies, contacts_, s.margin, s.friction, stream_);
+    } catch (const NonFiniteStateError& e) {  // nothing was moved: say which step it stopped
+      slot.timed = false;
+      throw NonFiniteStateError(e.body(), e.field(), steps_);
+    }
+    current_ = steps_ % 2;
+    slot.stats = StepStats<T>{};
+    slot.timed = timing_;
+    if (timing_) slot.marks.mark(1, stream_);
+    constexpr bool own_integration = !integrates<solver_type>::value;  // else the solver moves the bodies
+    if (own_integration) apply_forces(bodies, s.dt, g, stream_);  // the LCP sees v + dt M^-1 f_ext (thesis Eq. 6)
+    const bool warm = s.warm_start > 0;
+    if (warm) warm_.carry(contacts_.view(), s.warm_start, stream_);
+    slot.stats.solver = solver_.solve(bodies, contacts_, s, stream_, warm);
+    if (warm)
+      warm_.remember(contacts_.view(), stream_);
+    else
+      warm_.forget();
+    if (timing_) slot.marks.mark(2, stream_);
+    if (own_integration) move(bodies, s.dt, stream_);
+    if (timing_) slot.marks.mark(3, stream_);
+    if (figures_.size() == 0) figures_ = Figures(2);
+    step_figures_into(algorithms_, bodies.view(), contacts_.view(), g, figures_.data() + current_, stream_);
+    slot.marks.mark(4, stream_);
+    ++steps_;
+  }
+
+  StepStats<T> stats_of(std::size_t k) {
+    Slot& slot = slots_[k];
+    slot.marks.wait(4);
+    StepStats<T> st = slot.stats;
+    const StepFigures<T> f = figures_.data()[k];
+    st.max_penetration = f.max_penetration;
+    st.kinetic_energy = f.kinetic_energy;
+    st.potential_energy = f.potential_energy;
+    if (slot.timed) {
+      st.time_detection = slot.marks.seconds(0, 1);
+      st.time_solve = slot.marks.seconds(1, 2);
+      st.time_integration = slot.marks.seconds(2, 3);
+    }
+    return st;
+  }
+
   BodyManager<Device, T> manager_;
   stream_t stream_;
   SolverSettings<T> settings_;
@@ -124,6 +159,15 @@ class World {
   Contacts<Device, T, Model> contacts_;
   solver_type solver_;
   WarmStart<Device, T, Model> warm_;  // the previous step's impulses (settings.warm_start)
+  detail::DeviceAlgorithms<Device> algorithms_;
+  // The figures of the last two steps, written by the reduction straight into
+  // pinned host memory (mapped into the device's address space).
+  using Figures = memory::Buffer<StepFigures<T>, std::conditional_t<std::is_same_v<Device, device::gpu>,
+                                                                    memory::CUDAHostAllocator, memory::StandardAllocator>>;
+  Figures figures_;
+  Slot slots_[2];  // the last two steps queued
+  std::size_t steps_ = 0, current_ = 0;
+  bool timing_ = false;
 };
 
 }  // namespace gpusolve::rbd

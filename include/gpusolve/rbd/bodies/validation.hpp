@@ -3,9 +3,12 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <type_traits>
 #include <sstream>
 #include <string>
 
+#include "gpusolve/core/config.hpp"
 #include "gpusolve/core/error.hpp"
 #include "gpusolve/rbd/bodies/body.hpp"
 
@@ -29,7 +32,55 @@ class InvalidBodyError : public InvalidArgumentError {
   std::string field_;
 };
 
+// A body's state (position, orientation or velocity) became NaN or infinite
+// on the backend: found before a step changed anything, so that step was not
+// taken and every body keeps the state it had. step() is the World's step
+// count at that moment (npos when not known).
+class NonFiniteStateError : public InvalidBodyError {
+ public:
+  static constexpr std::size_t npos = std::size_t(-1);
+  NonFiniteStateError(std::size_t body, std::string field, std::size_t step = npos)
+      : InvalidBodyError(body, std::move(field), why(step)), step_(step) {}
+  std::size_t step() const noexcept { return step_; }
+
+ private:
+  static std::string why(std::size_t step) {
+    std::ostringstream os;
+    os << "is not finite";
+    if (step != npos) os << " before step " << step << "; the step was not taken";
+    return os.str();
+  }
+  std::size_t step_;
+};
+
 namespace detail {
+
+// 4 * i + f for body i (not removed) whose state field f (pos, q, v, w) holds a
+// NaN or infinity, else the largest key: the minimum over bodies names the first.
+template <class BV>
+struct NonFiniteKey {
+  BV b;
+  GPUSOLVE_HD std::uint64_t operator()(std::size_t i) const {
+    using T = std::remove_cv_t<std::remove_reference_t<decltype(b.pos(i, 0))>>;
+    if (b.status[i] == removed) return ~std::uint64_t(0);
+    const auto bad = [](T x) { return !(x - x == T(0)); };  // NaN and inf give NaN
+    for (std::size_t c = 0; c < 3; ++c)
+      if (bad(b.pos(i, c))) return 4 * std::uint64_t(i);
+    for (std::size_t c = 0; c < 4; ++c)
+      if (bad(b.q(i, c))) return 4 * std::uint64_t(i) + 1;
+    for (std::size_t c = 0; c < 3; ++c)
+      if (bad(b.v(i, c))) return 4 * std::uint64_t(i) + 2;
+    for (std::size_t c = 0; c < 3; ++c)
+      if (bad(b.w(i, c))) return 4 * std::uint64_t(i) + 3;
+    return ~std::uint64_t(0);
+  }
+};
+
+// The error for a key of NonFiniteKey.
+inline NonFiniteStateError non_finite_state(std::uint64_t key, std::size_t step = NonFiniteStateError::npos) {
+  static const char* const fields[] = {"pos", "q", "v", "w"};
+  return NonFiniteStateError(std::size_t(key / 4), fields[key % 4], step);
+}
 
 template <class T, std::size_t N>
 void require_finite(const std::array<T, N>& a, std::size_t body, const char* field) {

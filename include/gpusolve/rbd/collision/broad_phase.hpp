@@ -1,22 +1,21 @@
-// Broad phase: a uniform hashed grid over the spheres, built with Thrust sorts,
-// searches and scans; the same code on both backends.
+// Broad phase: a uniform hashed grid over the spheres, built with device-wide
+// sorts and scans queued on a stream (no host wait); the same kernels on both backends.
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 
+#include <limits>
+
 #include <thrust/binary_search.h>
-#include <thrust/iterator/counting_iterator.h>
-#include <thrust/reduce.h>
-#include <thrust/scan.h>
-#include <thrust/sort.h>
-#include <thrust/transform_reduce.h>
+#include <thrust/execution_policy.h>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
+#include "gpusolve/rbd/detail/device_algorithms.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/detail/thrust_backend.hpp"
 
@@ -50,17 +49,30 @@ GPUSOLVE_HD bool spheres_near(const View& b, std::size_t i, std::size_t j, T mar
 }
 
 template <class View, class T>
-struct SphereReach {  // diameter plus margin: the smallest admissible cell size
+struct SphereReach {  // diameter plus margin: the smallest admissible cell size; +inf when not finite
   View b;
   T margin;
-  GPUSOLVE_HD T operator()(std::size_t i) const { return on_grid(b, i) ? 2 * b.radius[i] + margin : T(0); }
+  GPUSOLVE_HD T operator()(std::size_t i) const {
+    if (!on_grid(b, i)) return T(0);
+    const T reach = 2 * b.radius[i] + margin;
+    return reach <= std::numeric_limits<T>::max() ? reach : std::numeric_limits<T>::infinity();
+  }
 };
 
-// The grid: cell (x, y, z) = floor(pos / cell), hashed into `buckets` (a power of two).
+// The grid: cell (x, y, z) = floor(pos / cell), hashed into `buckets` (a power
+// of two). The cell size is read in the kernel from the backend's memory, where
+// the reduction left it, so the host never waits for it; a cell that is not a
+// positive finite size (no spheres, or a radius that is not finite) leaves
+// every sphere off the grid.
 template <class T>
 struct GridGeometry {
   T inv_cell;
   std::uint32_t mask;
+  bool valid;
+  GPUSOLVE_HD GridGeometry(const T* cell, std::uint32_t bucket_mask)
+      : inv_cell(0), mask(bucket_mask), valid(*cell > T(0) && *cell <= std::numeric_limits<T>::max()) {
+    if (valid) inv_cell = T(1) / *cell;
+  }
   GPUSOLVE_HD std::int32_t coord(T x) const { return std::int32_t(std::floor(x * inv_cell)); }
   GPUSOLVE_HD std::uint32_t hash(std::int32_t x, std::int32_t y, std::int32_t z) const {
     return ((std::uint32_t(x) * 73856093u) ^ (std::uint32_t(y) * 19349663u) ^ (std::uint32_t(z) * 83492791u)) &
@@ -71,13 +83,26 @@ struct GridGeometry {
 template <class View, class T>
 struct HashSpheres {
   View b;
-  GridGeometry<T> g;
+  const T* cell;
+  std::uint32_t mask;
   std::uint32_t* hash;
   std::uint32_t* index;
   GPUSOLVE_HD void operator()(std::size_t i) const {
+    const GridGeometry<T> g(cell, mask);
     index[i] = std::uint32_t(i);
-    hash[i] = on_grid(b, i) ? g.hash(g.coord(b.pos(i, 0)), g.coord(b.pos(i, 1)), g.coord(b.pos(i, 2)))
-                            : g.mask + 1;  // past every bucket: sorts last, never searched
+    hash[i] = g.valid && on_grid(b, i) ? g.hash(g.coord(b.pos(i, 0)), g.coord(b.pos(i, 1)), g.coord(b.pos(i, 2)))
+                                       : mask + 1;  // past every bucket: sorts last, never searched
+  }
+};
+
+// [start[h], end[h]): the entries of bucket h in the sorted hashes.
+struct BucketBounds {
+  const std::uint32_t* hash;  // sorted
+  std::size_t n;
+  std::uint32_t *start, *end;
+  GPUSOLVE_HD void operator()(std::size_t h) const {
+    start[h] = std::uint32_t(thrust::lower_bound(thrust::seq, hash, hash + n, std::uint32_t(h)) - hash);
+    end[h] = std::uint32_t(thrust::upper_bound(thrust::seq, hash, hash + n, std::uint32_t(h)) - hash);
   }
 };
 
@@ -87,7 +112,8 @@ struct HashSpheres {
 template <class View, class T>
 struct NeighbourWalk {
   View b;
-  GridGeometry<T> g;
+  const T* cell;
+  std::uint32_t mask;
   T margin;
   const std::uint32_t* index;  // body indices sorted by bucket
   const std::uint32_t* start;  // first entry of each bucket in `index`
@@ -95,7 +121,8 @@ struct NeighbourWalk {
 
   template <class F>
   GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
-    if (!on_grid(b, i)) return;
+    const GridGeometry<T> g(cell, mask);
+    if (!g.valid || !on_grid(b, i)) return;
     const std::int32_t x = g.coord(b.pos(i, 0)), y = g.coord(b.pos(i, 1)), z = g.coord(b.pos(i, 2));
     std::uint32_t seen[27];
     int nseen = 0;
@@ -126,15 +153,28 @@ struct CountPairs {
   }
 };
 
+// Writes sphere i's pairs at [offset[i] - count[i], offset[i]) and sorts them
+// there by b (the walk meets them in bucket order; a sphere has few), so the
+// list comes out in pair_key order without a global sort. A sphere whose pairs
+// would pass `capacity` writes nothing: the caller grows the list and repeats.
 template <class Walk>
 struct WritePairs {
   Walk walk;
   const std::uint32_t* offset;  // inclusive scan of the counts
   const std::uint32_t* count;
   std::uint64_t* pairs;
+  std::size_t capacity;
   GPUSOLVE_HD void operator()(std::size_t i) const {
-    std::uint32_t o = offset[i] - count[i];
+    const std::uint32_t first = offset[i] - count[i], last = offset[i];
+    if (last > capacity) return;
+    std::uint32_t o = first;
     walk(i, [&](std::uint32_t j) { pairs[o++] = pair_key(std::uint32_t(i), j); });
+    for (std::uint32_t p = first + 1; p < last; ++p) {  // insertion sort
+      const std::uint64_t key = pairs[p];
+      std::uint32_t q = p;
+      for (; q > first && pairs[q - 1] > key; --q) pairs[q] = pairs[q - 1];
+      pairs[q] = key;
+    }
   }
 };
 
@@ -143,7 +183,10 @@ struct WritePairs {
 // Finds every pair of spheres (not removed) whose surfaces are closer than a
 // margin, on the backend of the bodies. The cell size is the largest sphere
 // diameter plus the margin, so near spheres always sit in neighbouring cells.
-// Scratch storage is kept and reused from step to step.
+// queue() only queues device work: the pair count stays in the backend's memory
+// until a caller reads it; the list has a capacity that grows geometrically
+// and is never silently cut (a caller that finds count > capacity grows it
+// with reserve() and queues again). Scratch storage is kept and reused.
 template <class Device, class T = float>
 class UniformGrid {
  public:
@@ -151,60 +194,73 @@ class UniformGrid {
   template <class E>
   using D1 = VectorD1<E, device_is<Device>>;
 
-  // Rebuilds the grid and the pair list; returns the number of pairs. The pairs
-  // are sorted by (a, b), a < b: pair_key order.
-  std::size_t find_pairs(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}) {
+  // Queues the grid's rebuild and the pair list. Afterwards, in stream order,
+  // pair_count() holds the number of pairs and cell() the cell size (+inf when
+  // a radius or the margin is not finite); when the count is at most
+  // capacity(), pairs() lists them sorted by (a, b), a < b: pair_key order,
+  // those of sphere i at [pair_end(i) - pair_count_of(i), pair_end(i)).
+  void queue(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}) {
     const View b = bodies.view();
-    const std::size_t n = b.size();
-    count_ = 0;
-    if (n == 0) return 0;
-    const auto policy = detail::thrust_policy(Device{}, stream);
-    const T cell = thrust::transform_reduce(policy, thrust::counting_iterator<std::size_t>(0),
-                                            thrust::counting_iterator<std::size_t>(n),
-                                            detail::SphereReach<View, T>{b, margin}, T(0), thrust::maximum<T>());
-    if (!(cell > 0)) return 0;  // no spheres
-    if (!std::isfinite(cell))
-      throw InvalidArgumentError("gpusolve: UniformGrid: a sphere radius or the margin is not finite");
+    n_ = b.size();
+    if (n_ == 0) return;
     std::uint32_t buckets = 1;
-    while (buckets < 2 * n && buckets < (1u << 30)) buckets <<= 1;
-    const detail::GridGeometry<T> g{T(1) / cell, buckets - 1};
-
-    detail::ensure_size(hash_, n);
-    detail::ensure_size(index_, n);
-    detail::ensure_size(count_per_body_, n);
-    detail::ensure_size(offset_, n);
+    while (buckets < 2 * n_ && buckets < (1u << 30)) buckets <<= 1;
+    int bits = 1;
+    while ((std::size_t(1) << bits) <= buckets) ++bits;  // the sentinel `buckets` included
+    for (D1<std::uint32_t>* v : {&hash_, &sorted_hash_, &index_, &sorted_index_, &count_, &offset_})
+      detail::ensure_size(*v, n_);
     detail::ensure_size(start_, buckets);
     detail::ensure_size(end_, buckets);
-    std::uint32_t *hash = hash_.data(), *index = index_.data();
-    launch(Device{}, n, detail::HashSpheres<View, T>{b, g, hash, index}, stream);
-    // Stable, so bodies in one bucket stay in index order on every backend.
-    thrust::stable_sort_by_key(policy, hash, hash + n, index);
-    thrust::lower_bound(policy, hash, hash + n, thrust::counting_iterator<std::uint32_t>(0),
-                        thrust::counting_iterator<std::uint32_t>(buckets), start_.data());
-    thrust::upper_bound(policy, hash, hash + n, thrust::counting_iterator<std::uint32_t>(0),
-                        thrust::counting_iterator<std::uint32_t>(buckets), end_.data());
+    if (cell_.size_x() == 0) cell_.resize(1);
+    if (pairs_.size_x() < 4 * n_) reserve(4 * n_);  // a pile has about 6 per sphere: at most one regrowth
 
+    const Device dev{};
+    algorithms_.max_into(n_, detail::SphereReach<View, T>{b, margin}, T(0), cell_.data(), stream);
+    launch(dev, n_, detail::HashSpheres<View, T>{b, cell_.data(), buckets - 1, hash_.data(), index_.data()}, stream);
+    // Stable, so bodies in one bucket stay in index order on every backend.
+    algorithms_.sort_pairs(hash_.data(), sorted_hash_.data(), index_.data(), sorted_index_.data(), n_, bits, stream);
+    launch(dev, buckets, detail::BucketBounds{sorted_hash_.data(), n_, start_.data(), end_.data()}, stream);
     using Walk = detail::NeighbourWalk<View, T>;
-    const Walk walk{b, g, margin, index, start_.data(), end_.data()};
-    launch(Device{}, n, detail::CountPairs<Walk>{walk, count_per_body_.data()}, stream);
-    thrust::inclusive_scan(policy, count_per_body_.data(), count_per_body_.data() + n, offset_.data());
-    count_ = detail::read_back<Device>(offset_.data(), n - 1, stream);
-    detail::ensure_size(pairs_, count_);
-    launch(Device{}, n, detail::WritePairs<Walk>{walk, offset_.data(), count_per_body_.data(), pairs_.data()},
+    const Walk walk{b, cell_.data(), buckets - 1, margin, sorted_index_.data(), start_.data(), end_.data()};
+    launch(dev, n_, detail::CountPairs<Walk>{walk, count_.data()}, stream);
+    algorithms_.inclusive_sum(count_.data(), offset_.data(), n_, stream);
+    launch(dev, n_, detail::WritePairs<Walk>{walk, offset_.data(), count_.data(), pairs_.data(), pairs_.size_x()},
            stream);
-    thrust::sort(policy, pairs_.data(), pairs_.data() + count_);
-    return count_;
   }
 
-  // The pairs of the last find_pairs: count() keys in pair_key order, in the
-  // bodies' memory.
+  // queue(), then waits for the count, growing the list and repeating when it
+  // was short; returns the number of pairs (the convenience of tests and tools).
+  std::size_t find_pairs(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}) {
+    for (;;) {
+      queue(bodies, margin, stream);
+      if (n_ == 0) return count_read_ = 0;
+      if (!(detail::read_back<Device>(cell_.data(), 0, stream) <= std::numeric_limits<T>::max()))
+        throw InvalidArgumentError("gpusolve: UniformGrid: a sphere radius or the margin is not finite");
+      count_read_ = detail::read_back<Device>(offset_.data(), n_ - 1, stream);
+      if (count_read_ <= capacity()) return count_read_;
+      reserve(count_read_);
+    }
+  }
+
+  // Room for at least `pairs` pairs (grows by half again; contents are lost).
+  void reserve(std::size_t pairs) { detail::ensure_size(pairs_, pairs); }
+  std::size_t capacity() const { return pairs_.size_x(); }
+
+  // In the backend's memory, valid in stream order after queue():
   const std::uint64_t* pairs() const { return pairs_.data(); }
-  std::size_t count() const { return count_; }
+  const std::uint32_t* pair_end() const { return offset_.data(); }  // per sphere, inclusive scan of the counts
+  const std::uint32_t* pair_count_of() const { return count_.data(); }
+  const std::uint32_t* pair_count() const { return n_ ? offset_.data() + (n_ - 1) : nullptr; }
+  const T* cell() const { return cell_.data(); }
+  // The count find_pairs() returned.
+  std::size_t count() const { return count_read_; }
 
  private:
-  D1<std::uint32_t> hash_, index_, count_per_body_, offset_, start_, end_;
+  D1<std::uint32_t> hash_, sorted_hash_, index_, sorted_index_, count_, offset_, start_, end_;
   D1<std::uint64_t> pairs_;
-  std::size_t count_ = 0;
+  D1<T> cell_;
+  detail::DeviceAlgorithms<Device> algorithms_;
+  std::size_t n_ = 0, count_read_ = 0;
 };
 
 }  // namespace gpusolve::rbd

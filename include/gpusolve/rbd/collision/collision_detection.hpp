@@ -1,25 +1,24 @@
 // Collision detection where the bodies live: the broad phase for sphere pairs,
 // every active sphere against the few obstacles (planes, boxes), the narrow
-// phase, and the contacts written by a count pass, a scan and a write pass.
+// phase, and the contacts written by a count pass, a scan and a write pass,
+// all queued on one stream; the host reads the counts once per step.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 
-#include <thrust/binary_search.h>
-#include <thrust/copy.h>
-#include <thrust/iterator/counting_iterator.h>
-#include <thrust/iterator/transform_iterator.h>
-#include <thrust/scan.h>
+#include <limits>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
+#include "gpusolve/rbd/bodies/validation.hpp"
 #include "gpusolve/rbd/collision/broad_phase.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
 #include "gpusolve/rbd/collision/narrow_phase.hpp"
+#include "gpusolve/rbd/detail/device_algorithms.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/detail/thrust_backend.hpp"
 
@@ -32,21 +31,20 @@ struct IsObstacle {  // a plane or box taking part
   GPUSOLVE_HD bool operator()(std::uint32_t i) const { return b.shape[i] != sphere && b.status[i] != removed; }
 };
 
-struct FirstKeyOf {  // the smallest pair key with a == i
-  GPUSOLVE_HD std::uint64_t operator()(std::uint32_t i) const { return pair_key(i, 0); }
-};
-
 // Visits the contacts of sphere i as body a, in increasing order of body b:
 // its grid pairs (a fixed sphere only with active ones) merged with the
 // obstacles (active spheres only). visit(b, geometry) for every gap < margin.
+// A pair list that overflowed its capacity is read as empty (the caller repeats).
 template <class View, class T>
 struct ContactWalk {
   View b;
   T margin;
   const std::uint64_t* pairs;       // pair keys sorted
-  const std::uint32_t* pair_start;  // n + 1 entries: pairs of body i are [pair_start[i], pair_start[i + 1])
-  const std::uint32_t* obstacles;   // sorted body indices
-  std::uint32_t obstacle_count;
+  const std::uint32_t* pair_end;    // pairs of body i are [pair_end[i] - pair_count[i], pair_end[i])
+  const std::uint32_t* pair_count;
+  std::size_t pair_capacity;
+  const std::uint32_t* obstacles;       // sorted body indices
+  const std::uint32_t* obstacle_count;  // their number
 
   template <class F>
   GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
@@ -55,10 +53,11 @@ struct ContactWalk {
     const BodyOffsets<T> off(b);
     const math::Vector3<T> pa(math::Vector3Global<T>(b.pos, off.v3, i));
     const T Ra = b.radius[i];
-    std::uint32_t p = pair_start[i];
-    const std::uint32_t pe = pair_start[i + 1];
+    const bool listed = pair_end[i] <= pair_capacity;
+    std::uint32_t p = listed ? pair_end[i] - pair_count[i] : 0;
+    const std::uint32_t pe = listed ? pair_end[i] : 0;
     std::uint32_t k = 0;
-    const std::uint32_t ke = active_a ? obstacle_count : 0;
+    const std::uint32_t ke = active_a ? *obstacle_count : 0;
     while (p < pe || k < ke) {
       const bool take_pair = k >= ke || (p < pe && pair_b(pairs[p]) < obstacles[k]);
       const std::uint32_t j = take_pair ? pair_b(pairs[p++]) : obstacles[k++];
@@ -90,6 +89,8 @@ struct CountContacts {
   }
 };
 
+// Writes sphere i's contacts at [offset[i] - count[i], offset[i]), unless that
+// passes the contacts' capacity (their view's size): the caller grows and repeats.
 template <class Walk, class ContactView, class T>
 struct WriteContacts {
   Walk walk;
@@ -98,11 +99,30 @@ struct WriteContacts {
   ContactView contacts;
   T mu;
   GPUSOLVE_HD void operator()(std::size_t i) const {
+    if (offset[i] > contacts.size()) return;
     std::uint32_t o = offset[i] - count[i];
     walk(i, [&](std::uint32_t j, const ContactGeometry<T>& g) {
       contacts.set(o++, std::uint32_t(i), j, g.n, g.ra, g.rb, g.gap, mu);
     });
   }
+};
+
+// What the host reads once per detection: the counts it must size for, and
+// the cell size (not finite: a radius or the margin is not finite).
+template <class T>
+struct DetectionSummary {
+  std::uint32_t pairs, contacts;
+  T cell;
+  std::uint64_t non_finite;  // NonFiniteKey's minimum: the first body with a NaN or inf in its state
+};
+
+template <class T>
+struct Summarize {
+  const std::uint32_t *pairs, *contacts;
+  const T* cell;
+  const std::uint64_t* non_finite;
+  DetectionSummary<T>* out;
+  GPUSOLVE_HD void operator()(std::size_t) const { *out = DetectionSummary<T>{*pairs, *contacts, *cell, *non_finite}; }
 };
 
 }  // namespace detail
@@ -120,47 +140,71 @@ class CollisionDetection {
   using D1 = VectorD1<E, device_is<Device>>;
 
   // Fills `contacts` (friction coefficient mu for models with friction) and
-  // returns their number.
+  // returns their number. The work is queued on `stream`; the host waits once,
+  // at the end, for the counts (and again only when a list had to grow).
+  // Throws NonFiniteStateError naming the first body (not removed) whose
+  // position, orientation or velocity is NaN or infinite; bodies are never written.
   template <class Model>
   std::size_t detect(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin, T mu = T(0),
                      stream_t stream = stream_t{}) {
     if (!(margin >= 0)) throw InvalidArgumentError("gpusolve: CollisionDetection: margin must be >= 0");
     const View b = bodies.view();
     const std::size_t n = b.size();
-    contacts.resize(0);
-    if (n == 0) return 0;
-    const auto policy = detail::thrust_policy(Device{}, stream);
-    const std::size_t pair_count = grid_.find_pairs(bodies, margin, stream);
-
+    if (n == 0) {
+      contacts.resize(0);
+      return 0;
+    }
     detail::ensure_size(obstacles_, n);
-    detail::ensure_size(pair_start_, n + 1);
+    detail::ensure_size(obstacle_count_, 1);
     detail::ensure_size(count_, n);
     detail::ensure_size(offset_, n);
-    const thrust::counting_iterator<std::uint32_t> first(0);
-    const std::uint32_t obstacle_count = std::uint32_t(
-        thrust::copy_if(policy, first, first + n, obstacles_.data(), detail::IsObstacle<View>{b}) -
-        obstacles_.data());
-    const auto keys = thrust::make_transform_iterator(first, detail::FirstKeyOf{});
-    thrust::lower_bound(policy, grid_.pairs(), grid_.pairs() + pair_count, keys, keys + (n + 1),
-                        pair_start_.data());
-
-    using Walk = detail::ContactWalk<View, T>;
-    const Walk walk{b, margin, grid_.pairs(), pair_start_.data(), obstacles_.data(), obstacle_count};
-    launch(Device{}, n, detail::CountContacts<Walk>{walk, count_.data()}, stream);
-    thrust::inclusive_scan(policy, count_.data(), count_.data() + n, offset_.data());
-    const std::size_t total = detail::read_back<Device>(offset_.data(), n - 1, stream);
-    contacts.resize(total);
-    using CView = typename Contacts<Device, T, Model>::View;
-    launch(Device{}, n, detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), contacts.view(), mu},
-           stream);
-    return total;
+    detail::ensure_size(summary_, 1);
+    detail::ensure_size(non_finite_, 1);
+    if (contacts.capacity() < 4 * n) contacts.resize(4 * n);
+    for (;;) {
+      grid_.queue(bodies, margin, stream);
+      contacts.resize(contacts.capacity());  // written up to the capacity, trimmed below
+      queue_contacts(b, contacts.view(), margin, mu, stream);
+      const auto s = detail::read_back<Device>(summary_.data(), 0, stream);
+      if (s.non_finite != ~std::uint64_t(0)) throw detail::non_finite_state(s.non_finite);
+      if (!(s.cell <= std::numeric_limits<T>::max()))
+        throw InvalidArgumentError("gpusolve: CollisionDetection: a sphere radius or the margin is not finite");
+      const bool pairs_short = s.pairs > grid_.capacity();
+      if (pairs_short) grid_.reserve(s.pairs);  // then the contact count is not known yet
+      if (!pairs_short && s.contacts <= contacts.capacity()) {
+        contacts.resize(s.contacts);
+        return s.contacts;
+      }
+      if (!pairs_short) contacts.resize(s.contacts);
+    }
   }
 
   const UniformGrid<Device, T>& grid() const { return grid_; }
 
  private:
+  template <class CView>
+  void queue_contacts(const View& b, const CView& c, T margin, T mu, stream_t stream) {
+    const std::size_t n = b.size();
+    const Device dev{};
+    algorithms_.reduce_into(n, detail::NonFiniteKey<View>{b}, ~std::uint64_t(0), detail::MinOp{}, non_finite_.data(),
+                            stream);
+    algorithms_.select_indices(n, detail::IsObstacle<View>{b}, obstacles_.data(), obstacle_count_.data(), stream);
+    using Walk = detail::ContactWalk<View, T>;
+    const Walk walk{b,          margin,        grid_.pairs(),      grid_.pair_end(), grid_.pair_count_of(),
+                    grid_.capacity(), obstacles_.data(), obstacle_count_.data()};
+    launch(dev, n, detail::CountContacts<Walk>{walk, count_.data()}, stream);
+    algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
+    launch(dev, n, detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), c, mu}, stream);
+    launch(dev, 1,
+           detail::Summarize<T>{grid_.pair_count(), offset_.data() + (n - 1), grid_.cell(), non_finite_.data(),
+                                summary_.data()}, stream);
+  }
+
   UniformGrid<Device, T> grid_;
-  D1<std::uint32_t> obstacles_, pair_start_, count_, offset_;
+  D1<std::uint32_t> obstacles_, obstacle_count_, count_, offset_;
+  D1<std::uint64_t> non_finite_;
+  D1<detail::DetectionSummary<T>> summary_;
+  detail::DeviceAlgorithms<Device> algorithms_;
 };
 
 }  // namespace gpusolve::rbd

@@ -6,15 +6,14 @@
 #include <cstdint>
 
 #include <thrust/binary_search.h>
-#include <thrust/iterator/counting_iterator.h>
-#include <thrust/sort.h>
+#include <thrust/execution_policy.h>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
+#include "gpusolve/rbd/detail/device_algorithms.hpp"
 #include "gpusolve/rbd/detail/reduce.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
-#include "gpusolve/rbd/detail/thrust_backend.hpp"
 
 namespace gpusolve::rbd {
 
@@ -40,6 +39,15 @@ struct GroupRanks {
   GPUSOLVE_HD void operator()(std::size_t p) const {
     slot[sorted[p]] = static_cast<std::uint32_t>(p);
     rank[p] = key[p] < bodies ? static_cast<std::uint32_t>(p - start[key[p]]) : 0u;
+  }
+};
+// start[k] = the first sorted position whose key is at least k.
+struct SegmentStarts {
+  const std::uint32_t* key;  // sorted
+  std::size_t entries;
+  std::uint32_t* start;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    start[k] = std::uint32_t(thrust::lower_bound(thrust::seq, key, key + entries, std::uint32_t(k)) - key);
   }
 };
 template <class U32View>
@@ -69,40 +77,51 @@ class ContactGrouping {
     std::size_t bodies;
   };
 
-  // Groups the contacts of `c` over the bodies of `b` (their views). One wait
-  // for the device: the largest segment decides the number of reduction passes.
+  // Groups the contacts of `c` over the bodies of `b` (their views): queued on
+  // `stream`, without a host wait or an allocation once warm.
   template <class BV, class CV>
   void build(const BV& b, const CV& c, stream_t stream = stream_t{}) {
     const std::size_t entries = 2 * c.size(), nb = b.size();
-    for (U32* v : {&key_, &sorted_, &slot_, &rank_}) detail::ensure_size(*v, entries);
+    for (U32* v : {&key_, &entry_, &sorted_key_, &sorted_, &slot_, &rank_}) detail::ensure_size(*v, entries);
     detail::ensure_size(start_, nb + 1);
     bodies_ = nb;
+    max_segment_known_ = false;
+    int bits = 1;
+    while ((std::size_t(1) << bits) <= nb) ++bits;  // keys 0 ... nb
     const Device dev{};
-    launch(dev, entries, detail::GroupKeys<BV, CV, U32View>{b, c, key_.view(), sorted_.view()}, stream);
-    const auto policy = detail::thrust_policy(dev, stream);
-    thrust::stable_sort_by_key(policy, key_.data(), key_.data() + entries, sorted_.data());
-    const thrust::counting_iterator<std::uint32_t> body(0);
-    thrust::lower_bound(policy, key_.data(), key_.data() + entries, body, body + (nb + 1), start_.data());
+    launch(dev, entries, detail::GroupKeys<BV, CV, U32View>{b, c, key_.view(), entry_.view()}, stream);
+    algorithms_.sort_pairs(key_.data(), sorted_key_.data(), entry_.data(), sorted_.data(), entries, bits, stream);
+    launch(dev, nb + 1, detail::SegmentStarts{sorted_key_.data(), entries, start_.data()}, stream);
     launch(dev, entries,
-           detail::GroupRanks<U32View>{key_.view(), sorted_.view(), start_.view(), slot_.view(), rank_.view(), nb},
+           detail::GroupRanks<U32View>{sorted_key_.view(), sorted_.view(), start_.view(), slot_.view(), rank_.view(), nb},
            stream);
-    const auto s = start_.view();
-    max_segment_ = max_over(dev, nb, detail::SegmentLength<U32View>{s}, std::uint32_t(0), stream);
+    stream_ = stream;
   }
 
   View view() { return View{slot_.view(), rank_.view(), start_.view(), sorted_.view(), bodies_}; }
-  // The most contacts any moving body has (the thesis's c_max).
-  std::size_t max_segment() const { return max_segment_; }
+  // The most contacts any moving body has (the thesis's c_max); the first call
+  // after a build waits for it.
+  std::size_t max_segment() {
+    if (!max_segment_known_) {
+      max_segment_ = max_over(Device{}, bodies_, detail::SegmentLength<U32View>{start_.view()}, std::uint32_t(0), stream_);
+      max_segment_known_ = true;
+    }
+    return max_segment_;
+  }
   // ceil(log2 c_max): passes of the log-step segmented reduction (Listing 12).
-  std::size_t passes() const {
+  std::size_t passes() {
+    const std::size_t m = max_segment();
     std::size_t s = 0;
-    while ((std::size_t(1) << s) < max_segment_) ++s;
+    while ((std::size_t(1) << s) < m) ++s;
     return s;
   }
 
  private:
-  U32 key_, sorted_, slot_, rank_, start_;
+  U32 key_, entry_, sorted_key_, sorted_, slot_, rank_, start_;
+  detail::DeviceAlgorithms<Device> algorithms_;
+  stream_t stream_{};
   std::size_t bodies_ = 0, max_segment_ = 0;
+  bool max_segment_known_ = false;
 };
 
 }  // namespace gpusolve::rbd

@@ -119,8 +119,6 @@ class CacheStore {
     entries_ = 2 * c.size();
   }
   CacheSink<T> sink() { return CacheSink<T>{dv_.view(), dw_.view(), grouping_.view().slot}; }
-  std::size_t passes() const { return grouping_.passes(); }
-
  protected:
   template <bool Sum, class BV>
   void to_bodies(const BV& b, stream_t stream) {
@@ -136,6 +134,7 @@ class CacheStore {
 template <class Device, class T>
 class Accumulator<UpdateCache, Device, T> : public detail::CacheStore<Device, T> {
  public:
+  std::size_t passes() { return this->grouping_.passes(); }  // waits for the grouping once per step
   template <class BV>
   void apply(const BV& b, stream_t stream = stream_t{}) {
     const auto rank = this->grouping_.view().rank;
@@ -150,6 +149,7 @@ class Accumulator<UpdateCache, Device, T> : public detail::CacheStore<Device, T>
 template <class Device, class T>
 class Accumulator<Gather, Device, T> : public detail::CacheStore<Device, T> {
  public:
+  std::size_t passes() const { return 0; }
   template <class BV>
   void apply(const BV& b, stream_t stream = stream_t{}) {
     this->template to_bodies<true>(b, stream);

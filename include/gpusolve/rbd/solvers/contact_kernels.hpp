@@ -198,6 +198,20 @@ struct ResolveCollisions {
   }
 };
 
+// One Jacobi iteration's work on contact i in one kernel: its velocity error,
+// then its projected update. The update reads only contact i's own error, and
+// the velocities it reads change only after the kernel (Sink accumulates), so
+// fusing saves a launch and a pass over rhs without changing a bit.
+template <class Model, class BV, class CV, class Sink, class T>
+struct JacobiContact {
+  CalcNextPhi<Model, BV, CV, T> phi;
+  ResolveCollisions<Model, BV, CV, Sink, T> resolve;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    phi(i);
+    resolve(i);
+  }
+};
+
 // ApplyImpulses: the body velocity changes of the impulses already in c.x
 // (J^T x through the same sink as ResolveCollisions), so that velocities and
 // impulses agree before a solve that starts from a nonzero x (warm start).

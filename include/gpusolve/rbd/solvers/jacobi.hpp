@@ -75,9 +75,10 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       momentum_.begin(b, c, stream);
       ConvergenceMonitor<T> monitor(s, st);
       for (std::size_t it = 1;; ++it) {
-        launch(dev, nc, CalcNextPhi<Model, BV, CV, T>{b, c, rhs, T(1) / s.dt, s.correction}, stream);
         const bool measure = monitor.checks(it);
-        launch(dev, nc, ResolveCollisions<Model, BV, CV, Sink, T>{b, c, rhs, acc_.sink(), omega, measure, residual},
+        launch(dev, nc,
+               JacobiContact<Model, BV, CV, Sink, T>{{b, c, rhs, T(1) / s.dt, s.correction},
+                                                     {b, c, rhs, acc_.sink(), omega, measure, residual}},
                stream);
         acc_.apply(b, stream);
         if (measure && monitor.stop(it, this->residual(b, nc, stream))) break;

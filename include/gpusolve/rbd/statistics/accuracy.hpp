@@ -7,9 +7,16 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
-#include "gpusolve/rbd/detail/reduce.hpp"
+#include "gpusolve/rbd/detail/device_algorithms.hpp"
 
 namespace gpusolve::rbd {
+
+// A step's accuracy figures: the largest penetration relative to the smaller
+// radius of the pair, kinetic and potential energy of the moving bodies.
+template <class T>
+struct StepFigures {
+  T max_penetration, kinetic_energy, potential_energy;
+};
 
 namespace detail {
 
@@ -51,22 +58,41 @@ struct PotentialEnergy {
   }
 };
 
+// The three figures in one reduction over max(contacts, bodies) indices.
+template <class BV, class CV, class T>
+struct StepFiguresOf {
+  BV b;
+  CV c;
+  math::Vector3<T> g;
+  GPUSOLVE_HD StepFigures<T> operator()(std::size_t i) const {
+    StepFigures<T> f{};
+    if (i < c.size()) f.max_penetration = RelativePenetration<BV, CV, T>{b, c}(i);
+    if (i < b.size()) {
+      f.kinetic_energy = KineticEnergy<BV, T>{b}(i);
+      f.potential_energy = PotentialEnergy<BV, T>{b, g}(i);
+    }
+    return f;
+  }
+};
+
+struct CombineFigures {
+  template <class T>
+  GPUSOLVE_HD StepFigures<T> operator()(const StepFigures<T>& x, const StepFigures<T>& y) const {
+    return StepFigures<T>{x.max_penetration < y.max_penetration ? y.max_penetration : x.max_penetration,
+                          x.kinetic_energy + y.kinetic_energy, x.potential_energy + y.potential_energy};
+  }
+};
+
 }  // namespace detail
 
-// Largest interpenetration of the contacts relative to the smaller radius of the pair.
+// Queues the figures of bodies b and contacts c into *out, memory of the
+// backend, in one reduction (no host wait).
 template <class Device, class T, class BV, class CV>
-T max_relative_penetration(const BV& b, const CV& c, stream_t stream = stream_t{}) {
-  return max_over(Device{}, c.size(), detail::RelativePenetration<BV, CV, T>{b, c}, T(0), stream);
-}
-
-template <class Device, class BV, class T>
-T kinetic_energy(const BV& b, stream_t stream = stream_t{}) {
-  return sum_over(Device{}, b.size(), detail::KineticEnergy<BV, T>{b}, T(0), stream);
-}
-
-template <class Device, class BV, class T>
-T potential_energy(const BV& b, const math::Vector3<T>& gravity, stream_t stream = stream_t{}) {
-  return sum_over(Device{}, b.size(), detail::PotentialEnergy<BV, T>{b, gravity}, T(0), stream);
+void step_figures_into(detail::DeviceAlgorithms<Device>& algorithms, const BV& b, const CV& c,
+                       const math::Vector3<T>& gravity, StepFigures<T>* out, stream_t stream = stream_t{}) {
+  const std::size_t n = c.size() > b.size() ? c.size() : b.size();
+  algorithms.reduce_into(n, detail::StepFiguresOf<BV, CV, T>{b, c, gravity}, StepFigures<T>{}, detail::CombineFigures{},
+                         out, stream);
 }
 
 }  // namespace gpusolve::rbd

@@ -45,8 +45,9 @@ struct SolverStats {
   T residual() const { return residuals.empty() ? T(0) : residuals.back(); }
 };
 
-// One time step of a World: the solve, the accuracy figures and the wall time
-// (seconds) of each phase, measured after the backend finished it.
+// One time step of a World: the solve, the accuracy figures and the time
+// (seconds) of each phase, measured on the backend's stream when the World's
+// phase timing is on (World::set_phase_timing), else zero.
 template <class T>
 struct StepStats {
   SolverStats<T> solver;

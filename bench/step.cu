@@ -1,0 +1,210 @@
+// The whole time step, per phase and in total, on the GPU and the CPU backend.
+//
+// Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance]
+//                          [--settle 900] [--steps 100] [--cpu-steps 20] [--cpu-max 1000000] [--csv FILE]
+//
+// For each N the shared pile (bench/shared_pile.hpp, ../shared/bench/PILE.md)
+// falls for `settle` steps on the GPU at the library's defaults; every timing
+// then starts from that same settled state, copied into a fresh World:
+//   jacobi10:  projected Jacobi (gather), exactly 10 iterations per step, one check;
+//   defaults:  World<device::gpu> with SolverSettings{} (APGD, 50 iterations);
+//   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500.
+// GPU, after 20 warm-up steps:
+//   step     median of CUDA-event times around each advance(1): what a step loop pays;
+//   queued   advance(steps) timed as one: steps queued back to back, divided by steps;
+//   phases   medians of the World's per-phase event times (set_phase_timing) over
+//            as many more steps.
+// CPU backend: the same World on device::cpu from the same state (host clock,
+// single thread), after 2 warm-up steps; sizes above --cpu-max are skipped.
+// Also printed: contacts, iterations, the largest penetration over the timed
+// steps and the median residual: the accuracy the time bought.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "gpusolve/rbd/world.hpp"
+#include "shared_pile.hpp"
+#include "timing.hpp"
+
+namespace {
+
+using namespace gpusolve;
+using namespace gpusolve::bench;
+using rbd::SolverSettings;
+using T = float;
+
+struct Options {
+  std::vector<std::size_t> n{1000, 10000, 100000, 1000000};
+  std::vector<std::string> modes{"jacobi10", "defaults", "tolerance"};
+  long settle = 900, steps = 100, cpu_steps = 20;
+  std::size_t cpu_max = 1000000;
+  std::string csv;
+};
+
+struct Row {
+  double step_ms = 0, queued_ms = 0, detection_ms = 0, solve_ms = 0, integration_ms = 0;
+  double iterations = 0, penetration = 0, residual = 0;
+  std::size_t contacts = 0, steps = 0;
+};
+
+SolverSettings<T> settings_for(const std::string& mode) {
+  SolverSettings<T> s;
+  s.friction = T(0.5);  // PILE.md
+  if (mode == "jacobi10") {
+    s.max_iterations = 10, s.check_every = 10;
+    s.tolerance = T(1e-30);  // runs all 10
+  } else if (mode == "tolerance") {
+    s.max_iterations = 500, s.check_every = 10;
+  } else if (mode != "defaults") {
+    throw InvalidArgumentError("bench: unknown mode '" + mode + "' (jacobi10, defaults, tolerance)");
+  }
+  return s;
+}
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t a = 0;
+  for (std::size_t b; (b = s.find(',', a)) != std::string::npos; a = b + 1) out.push_back(s.substr(a, b - a));
+  out.push_back(s.substr(a));
+  return out;
+}
+
+void account(Row& r, const rbd::StepStats<T>& st, std::vector<double>& residuals) {
+  r.iterations += double(st.solver.total_iterations);
+  r.penetration = std::max(r.penetration, double(st.max_penetration));
+  residuals.push_back(double(st.solver.residual()));
+  r.contacts = st.solver.contacts;
+}
+
+template <class Method>
+Row time_gpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
+  rbd::World<device::gpu, T, rbd::ConeFriction, Method> world(set, s);
+  world.advance(20);
+  EventTimer timer(stream_t{});
+  Row r;
+  std::vector<double> ms, residuals, det, sol, integ;
+  for (long k = 0; k < steps; ++k) {
+    timer.start();
+    world.advance(1);
+    ms.push_back(timer.stop_ms());
+    account(r, world.latest_stats(), residuals);
+  }
+  timer.start();
+  world.advance(std::size_t(steps));
+  r.queued_ms = timer.stop_ms() / double(steps);
+  world.set_phase_timing(true);
+  for (long k = 0; k < steps; ++k) {
+    world.advance(1);
+    const auto st = world.latest_stats();
+    det.push_back(1e3 * st.time_detection), sol.push_back(1e3 * st.time_solve), integ.push_back(1e3 * st.time_integration);
+  }
+  r.step_ms = spread(ms).median;
+  r.detection_ms = spread(det).median, r.solve_ms = spread(sol).median, r.integration_ms = spread(integ).median;
+  r.iterations /= double(steps);
+  r.residual = spread(residuals).median;
+  r.steps = std::size_t(steps);
+  return r;
+}
+
+template <class Method>
+Row time_cpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
+  rbd::World<device::cpu, T, rbd::ConeFriction, Method> world(set, s);
+  world.advance(2);
+  world.set_phase_timing(true);
+  Row r;
+  std::vector<double> ms, residuals, det, sol, integ;
+  for (long k = 0; k < steps; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    world.advance(1);
+    ms.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    const auto st = world.latest_stats();
+    account(r, st, residuals);
+    det.push_back(1e3 * st.time_detection), sol.push_back(1e3 * st.time_solve), integ.push_back(1e3 * st.time_integration);
+  }
+  r.step_ms = spread(ms).median;
+  r.queued_ms = r.step_ms;  // the host backend runs as it queues
+  r.detection_ms = spread(det).median, r.solve_ms = spread(sol).median, r.integration_ms = spread(integ).median;
+  r.iterations /= double(steps);
+  r.residual = spread(residuals).median;
+  r.steps = std::size_t(steps);
+  return r;
+}
+
+template <class Method>
+Row time_backend(bool gpu, const rbd::BodySet<T>& set, const SolverSettings<T>& s, long steps) {
+  return gpu ? time_gpu<Method>(set, s, steps) : time_cpu<Method>(set, s, steps);
+}
+
+Row time_mode(bool gpu, const std::string& mode, const rbd::BodySet<T>& set, long steps) {
+  const SolverSettings<T> s = settings_for(mode);
+  if (mode == "jacobi10") return time_backend<rbd::Jacobi<rbd::Gather>>(gpu, set, s, steps);
+  return time_backend<rbd::AcceleratedJacobi<rbd::Gather>>(gpu, set, s, steps);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  const char* usage =
+      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
+      "[--csv FILE]";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--n") o.n = parse_list<std::size_t>(option_value(argc, argv, i));
+    else if (a == "--modes") o.modes = split(option_value(argc, argv, i));
+    else if (a == "--settle") o.settle = std::stol(option_value(argc, argv, i));
+    else if (a == "--steps") o.steps = std::max(1L, std::stol(option_value(argc, argv, i)));
+    else if (a == "--cpu-steps") o.cpu_steps = std::max(1L, std::stol(option_value(argc, argv, i)));
+    else if (a == "--cpu-max") o.cpu_max = std::stoul(option_value(argc, argv, i));
+    else if (a == "--csv") o.csv = option_value(argc, argv, i);
+    else usage_exit(argv[0], usage, a);
+  }
+  try {
+    const std::string gpu_name = print_banner("gpusolve whole-step benchmark: the shared pile, per phase and in total");
+    std::FILE* csv = open_csv(o.csv,
+                              "backend,n,mode,contacts,steps,ms_step_median,ms_step_queued,ms_detection,ms_solve,"
+                              "ms_integration,iterations_mean,max_penetration,residual_median,gpu");
+    for (std::size_t n : o.n) {
+      rbd::BodySet<T> set = shared_pile<T>(n);
+      {
+        std::printf("... n=%zu: settling %ld steps on the GPU at the defaults\n", n, o.settle);
+        std::fflush(stdout);
+        SolverSettings<T> s;
+        s.friction = T(0.5);
+        rbd::World<device::gpu, T> settle(set, s);
+        settle.advance(std::size_t(o.settle));
+        settle.syncHost();
+        std::printf("    %zu contacts, penetration %.4f%%\n", settle.latest_stats().solver.contacts,
+                    100 * double(settle.latest_stats().max_penetration));
+      }
+      for (const bool gpu : {true, false}) {
+        if (!gpu && n > o.cpu_max) continue;
+        for (const auto& mode : o.modes) {
+          const long steps = gpu ? o.steps : o.cpu_steps;
+          std::printf("... %s n=%zu %s, %ld steps\n", gpu ? "gpu" : "cpu", n, mode.c_str(), steps);
+          std::fflush(stdout);
+          const Row r = time_mode(gpu, mode, set, steps);
+          std::printf("    %zu contacts: step %.3f ms (queued %.3f ms), detection %.3f, solve %.3f, integration "
+                      "%.3f ms; %.1f iterations, penetration %.4f%%, residual %.3g\n",
+                      r.contacts, r.step_ms, r.queued_ms, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations,
+                      100 * r.penetration, r.residual);
+          std::fflush(stdout);
+          if (csv)
+            std::fprintf(csv, "%s,%zu,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%s\n", gpu ? "gpu" : "cpu", n,
+                         mode.c_str(), r.contacts, r.steps, r.step_ms, r.queued_ms, r.detection_ms, r.solve_ms,
+                         r.integration_ms, r.iterations, r.penetration, r.residual, gpu_name.c_str());
+        }
+      }
+    }
+    if (csv) std::fclose(csv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "gpusolve_bench_step: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

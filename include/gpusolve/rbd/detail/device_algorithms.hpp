@@ -1,0 +1,162 @@
+// DeviceAlgorithms: the device-wide sort, scan, select and max of a time step,
+// queued on a stream with one temporary buffer kept between calls, so that a
+// warm step allocates nothing and never waits for the device. GPU: CUB; host:
+// sequential loops with the same results (the sort is stable on both).
+#pragma once
+
+#include <algorithm>
+#include <climits>
+#include <cstddef>
+#include <cstdint>
+#include <numeric>
+#include <type_traits>
+#include <vector>
+
+#include <thrust/iterator/counting_iterator.h>
+
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/core/device.hpp"
+#include "gpusolve/core/error.hpp"
+
+#if GPUSOLVE_HAS_NVCC
+#include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_reduce.cuh>
+#include <cub/device/device_scan.cuh>
+#include <cub/device/device_select.cuh>
+#endif
+
+namespace gpusolve::rbd::detail {
+
+// Reduction operators (namespace scope: nvcc needs kernel arguments' types visible).
+struct MaxOp {
+  template <class T>
+  GPUSOLVE_HD T operator()(const T& a, const T& b) const {
+    return a < b ? b : a;
+  }
+};
+struct MinOp {
+  template <class T>
+  GPUSOLVE_HD T operator()(const T& a, const T& b) const {
+    return b < a ? b : a;
+  }
+};
+
+template <class Device>
+class DeviceAlgorithms {
+  static constexpr bool gpu = std::is_same_v<Device, device::gpu>;
+
+ public:
+  // (keys_out, values_out) = (keys_in, values_in) stably sorted by the key bits
+  // [0, end_bit); the inputs are left as they were.
+  template <class K, class V>
+  void sort_pairs(const K* keys_in, K* keys_out, const V* values_in, V* values_out, std::size_t n, int end_bit,
+                  stream_t stream) {
+    if (n == 0) return;
+    if constexpr (gpu) {
+#if GPUSOLVE_HAS_NVCC
+      run([&](void* temp, std::size_t& bytes) {
+        return cub::DeviceRadixSort::SortPairs(temp, bytes, keys_in, keys_out, values_in, values_out, items(n), 0,
+                                               end_bit, stream);
+      });
+#else
+      unsupported();
+#endif
+    } else {
+      (void)end_bit, (void)stream;
+      order_.resize(n);
+      std::iota(order_.begin(), order_.end(), std::size_t(0));
+      std::stable_sort(order_.begin(), order_.end(), [&](std::size_t x, std::size_t y) { return keys_in[x] < keys_in[y]; });
+      for (std::size_t i = 0; i < n; ++i) keys_out[i] = keys_in[order_[i]], values_out[i] = values_in[order_[i]];
+    }
+  }
+
+  // out[i] = in[0] + ... + in[i].
+  template <class U>
+  void inclusive_sum(const U* in, U* out, std::size_t n, stream_t stream) {
+    if (n == 0) return;
+    if constexpr (gpu) {
+#if GPUSOLVE_HAS_NVCC
+      run([&](void* temp, std::size_t& bytes) {
+        return cub::DeviceScan::InclusiveSum(temp, bytes, in, out, items(n), stream);
+      });
+#else
+      unsupported();
+#endif
+    } else {
+      (void)stream;
+      std::inclusive_scan(in, in + n, out);
+    }
+  }
+
+  // The indices i < n with keep(i), in increasing order, into out; their number into *count.
+  template <class Pred>
+  void select_indices(std::size_t n, Pred keep, std::uint32_t* out, std::uint32_t* count, stream_t stream) {
+    if constexpr (gpu) {
+#if GPUSOLVE_HAS_NVCC
+      const thrust::counting_iterator<std::uint32_t> first(0);
+      run([&](void* temp, std::size_t& bytes) {
+        return cub::DeviceSelect::If(temp, bytes, first, out, count, items(n), keep, stream);
+      });
+#else
+      unsupported();
+#endif
+    } else {
+      (void)stream;
+      std::uint32_t k = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (keep(std::uint32_t(i))) out[k++] = std::uint32_t(i);
+      *count = k;
+    }
+  }
+
+  // *out = init op f(0) op ... op f(n - 1), left in the backend's memory.
+  template <class F, class T, class Op>
+  void reduce_into(std::size_t n, F f, T init, Op op, T* out, stream_t stream) {
+    if constexpr (gpu) {
+#if GPUSOLVE_HAS_NVCC
+      const thrust::counting_iterator<std::size_t> first(0);
+      run([&](void* temp, std::size_t& bytes) {
+        return cub::DeviceReduce::TransformReduce(temp, bytes, first, out, items(n), op, f, init, stream);
+      });
+#else
+      unsupported();
+#endif
+    } else {
+      (void)stream;
+      T r = init;
+      for (std::size_t i = 0; i < n; ++i) r = op(r, f(i));
+      *out = r;
+    }
+  }
+
+  template <class F, class T>
+  void max_into(std::size_t n, F f, T init, T* out, stream_t stream) {
+    reduce_into(n, f, init, MaxOp{}, out, stream);
+  }
+
+  // Bytes of temporary storage held (GPU; stays put once warm).
+  std::size_t scratch_bytes() const { return temp_.size_x(); }
+
+ private:
+  static int items(std::size_t n) {
+    if (n > std::size_t(INT_MAX)) throw InvalidArgumentError("gpusolve: a device-wide algorithm got more than INT_MAX items");
+    return int(n);
+  }
+  // A CUB call twice: the size query, then the work in the kept buffer (grown when short).
+  template <class Call>
+  void run(Call&& call) {
+    std::size_t bytes = 0;
+    GPUSOLVE_CUDA_CHECK(call(nullptr, bytes));
+    if (temp_.size_x() < bytes) temp_.resize(bytes + bytes / 2);
+    GPUSOLVE_CUDA_CHECK(call(static_cast<void*>(temp_.data()), bytes));
+  }
+  [[noreturn]] static void unsupported() {
+    throw UnsupportedError("gpusolve: device-wide algorithms on device::gpu need this translation unit compiled by nvcc");
+  }
+
+  VectorD1<std::uint8_t, device_is<Device>> temp_;
+  std::vector<std::size_t> order_;  // host sort's permutation
+};
+
+}  // namespace gpusolve::rbd::detail

@@ -1,0 +1,159 @@
+// The queued time step on the CPU backend: steps queued with advance() equal
+// steps taken one by one, statistics read late equal statistics read at once,
+// a NaN in a body's state stops the step naming the body and the step, and the
+// collision lists grow without dropping a contact.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "catch_compat.hpp"
+#include "gpusolve/rbd/bodies/body_manager.hpp"
+#include "gpusolve/rbd/collision/collision_detection.hpp"
+#include "test_rbd_collision_scene.hpp"
+#include "test_rbd_scenes.hpp"
+
+using namespace rbd_test;
+
+namespace {
+
+SolverSettings<double> pile_settings() {
+  SolverSettings<double> s;
+  s.friction = 0.4;
+  s.margin = 0;  // so that contacts overlap and the penetration figure is not zero
+  return s;
+}
+
+// Positions and velocities of every body, bit for bit.
+std::vector<double> state(World<device::cpu, double>& w) {
+  auto& b = w.bodies();
+  std::vector<double> out;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    for (std::size_t c = 0; c < 3; ++c) out.push_back(b.pos(i, c)), out.push_back(b.v(i, c)), out.push_back(b.w(i, c));
+  return out;
+}
+
+void same_stats(const StepStats<double>& a, const StepStats<double>& b) {
+  CHECK(a.solver.contacts == b.solver.contacts);
+  CHECK(a.solver.iterations == b.solver.iterations);
+  CHECK(a.solver.residual() == b.solver.residual());
+  CHECK(a.max_penetration == b.max_penetration);
+  CHECK(a.kinetic_energy == b.kinetic_energy);
+  CHECK(a.potential_energy == b.potential_energy);
+}
+
+}  // namespace
+
+TEST_CASE("queued steps: statistics read one step late equal those read at once", "[rbd_step]") {
+  auto set_a = pile<double>(3, 3), set_b = set_a;
+  World<device::cpu, double> a(set_a, pile_settings()), b(set_b, pile_settings());
+  CHECK(b.latest_stats().solver.contacts == 0);  // nothing queued yet: zero statistics
+  std::vector<StepStats<double>> at_once;
+  for (int i = 0; i < 40; ++i) at_once.push_back(a.step());
+  b.advance(1);
+  for (int i = 1; i < 40; ++i) {
+    b.advance(1);
+    INFO("step " << i - 1);
+    same_stats(b.previous_stats(), at_once[std::size_t(i - 1)]);
+  }
+  same_stats(b.latest_stats(), at_once.back());
+  CHECK(b.steps_queued() == 40);
+  CHECK(at_once.back().solver.contacts > 30);
+  CHECK(at_once.back().max_penetration > 0);
+  CHECK(state(a) == state(b));
+}
+
+TEST_CASE("queued steps: advance(N) moves the bodies exactly as N calls of step()", "[rbd_step]") {
+  auto set_a = pile<double>(3, 2, 0.5, 0.05), set_b = set_a;
+  World<device::cpu, double> a(set_a, pile_settings()), b(set_b, pile_settings());
+  for (int i = 0; i < 25; ++i) a.step();
+  b.advance(25);
+  CHECK(state(a) == state(b));
+  same_stats(a.latest_stats(), b.latest_stats());
+}
+
+TEST_CASE("phase timing: measured when asked, zero otherwise", "[rbd_step]") {
+  auto set = pile<double>(3, 2);
+  World<device::cpu, double> w(set, pile_settings());
+  const auto off = w.step();
+  CHECK(off.time_detection == 0);
+  CHECK(off.time_solve == 0);
+  w.set_phase_timing(true);
+  const auto on = w.step();
+  CHECK(on.time_detection > 0);
+  CHECK(on.time_solve > 0);
+  CHECK(on.time_integration >= 0);
+}
+
+TEST_CASE("a NaN or infinity in one body's state names the body and the step, and moves nothing",
+          "[rbd_step]") {
+  const char* const fields[] = {"pos", "q", "v", "w"};
+  for (int f = 0; f < 4; ++f)
+    for (double bad : {std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
+      auto set = pile<double>(3, 2, 0.5, 0.05);
+      World<device::cpu, double> w(set, pile_settings());
+      w.advance(7);
+      auto& b = w.bodies();
+      const std::size_t victim = 11;
+      if (f == 0) b.pos(victim, 1) = bad;
+      if (f == 1) b.q(victim, 2) = bad;
+      if (f == 2) b.v(victim, 0) = bad;
+      if (f == 3) b.w(victim, 2) = bad;
+      const std::vector<double> before = state(w);
+      INFO("field " << fields[f] << ", value " << bad);
+      try {
+        w.step();
+        FAIL("the step ran with a non-finite state");
+      } catch (const NonFiniteStateError& e) {
+        CHECK(e.body() == victim);
+        CHECK(e.field() == fields[f]);
+        CHECK(e.step() == 7);
+        const std::string what = e.what();
+        CHECK(what.find("body 11") != std::string::npos);
+        CHECK(what.find("step 7") != std::string::npos);
+      }
+      const std::vector<double> after = state(w);
+      REQUIRE(after.size() == before.size());
+      for (std::size_t k = 0; k < after.size(); ++k)  // NaN == NaN fails: compare the bits' meaning
+        CHECK((after[k] == before[k] || (std::isnan(after[k]) && std::isnan(before[k]))));
+      CHECK(w.steps_queued() == 7);
+      CHECK(w.latest_stats().solver.contacts > 0);  // the last good step's statistics are kept
+      // Repaired, the World steps on.
+      if (f == 0) b.pos(victim, 1) = 1.0;
+      if (f == 1) b.q(victim, 2) = 0.0;
+      if (f == 2) b.v(victim, 0) = 0.0;
+      if (f == 3) b.w(victim, 2) = 0.0;
+      CHECK_NOTHROW(w.step());
+      CHECK(w.steps_queued() == 8);
+    }
+}
+
+TEST_CASE("collision detection grows its pair and contact lists and drops none", "[rbd_step][collision]") {
+  // 60 spheres of radius 0.5 within 0.45 of each other, all sinking into a
+  // plane: 1770 pairs and 1830 contacts, far past the 4 per body reserved at first.
+  BodySet<float> s;
+  const std::size_t spheres = 60;
+  for (std::size_t i = 0; i < spheres; ++i)
+    s.add_sphere({0.05f * float(i % 5), 0.05f * float((i / 5) % 4), 0.05f + 0.1f * float(i / 20)}, 0.5f, 1.f);
+  s.add_plane({0, 0, 1}, 0.f);
+  const auto expected = brute_force_pairs(s, 0.f);
+  REQUIRE(expected.size() > 4 * s.size());
+  BodyManager<device::cpu> m(s);
+  m.syncDevice();
+  UniformGrid<device::cpu> grid;
+  const std::size_t n = grid.find_pairs(m.device(), 0.f);
+  CHECK(std::vector<std::uint64_t>(grid.pairs(), grid.pairs() + n) == expected);
+  CollisionDetection<device::cpu> cd;
+  Contacts<device::cpu, float, Frictionless> c;
+  const std::size_t nc = cd.detect(m.device(), c, 0.f);
+  CHECK(nc == expected.size() + spheres);
+  CHECK(c.size() == nc);
+  std::vector<std::uint64_t> keys;
+  for (std::size_t i = 0; i < nc; ++i) keys.push_back(pair_key(c.a[i], c.b[i]));
+  CHECK(std::is_sorted(keys.begin(), keys.end()));
+  CHECK(std::adjacent_find(keys.begin(), keys.end()) == keys.end());
+  // A second detection reuses the grown lists and finds the same.
+  CHECK(cd.detect(m.device(), c, 0.f) == nc);
+}
