@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # The whole GPU check in one command, for a machine with a CUDA GPU: builds the
 # sm_90 preset, runs ctest (host and GPU suites, consumers, audit), then the GPU
-# suite under compute-sanitizer memcheck. Logs go to $OUT (or ./out/gpu).
+# suite under compute-sanitizer memcheck and initcheck (reads of device memory
+# never written), and racecheck (shared-memory hazards) over the tests that run
+# the step's CUB sorts, scans, selections and reductions (the whole suite under
+# racecheck takes longer than ten minutes). Logs go to $OUT (or ./out/gpu).
 # API errors are not reported by the sanitizer because the error-path tests
 # provoke them on purpose; memory errors are.
 set -uo pipefail
@@ -14,9 +17,16 @@ cmake --preset gpu "${extra[@]}" > "$out/configure.log" 2>&1 || { tail -30 "$out
 cmake --build --preset gpu -j "$(nproc)" > "$out/build.log" 2>&1 || { grep -E "error|Error" "$out/build.log" | head -40; exit 1; }
 ctest --preset gpu 2>&1 | tee "$out/ctest.log" | tail -15
 rc=${PIPESTATUS[0]}
-compute-sanitizer --tool memcheck --report-api-errors no --error-exitcode 9 \
-  build/gpu/tests/gpusolve_gpu_tests > "$out/memcheck.log" 2>&1
-src=$?
-tail -4 "$out/memcheck.log"
-echo "ctest rc=$rc memcheck rc=$src"
-[ "$rc" -eq 0 ] && [ "$src" -eq 0 ]
+status=0
+for tool in memcheck initcheck racecheck; do
+  spec=()
+  [ "$tool" = racecheck ] && spec=("[rbd_step],[collision]")
+  compute-sanitizer --tool "$tool" --report-api-errors no --error-exitcode 9 \
+    build/gpu/tests/gpusolve_gpu_tests "${spec[@]}" > "$out/$tool.log" 2>&1
+  rc_tool=$?
+  echo "$tool: $(grep -E "ERROR SUMMARY|RACECHECK SUMMARY" "$out/$tool.log" | tail -1) (rc=$rc_tool)"
+  grep -E "^(All tests passed|test cases)" "$out/$tool.log" | tail -1
+  [ "$rc_tool" -eq 0 ] || status=1
+done
+echo "ctest rc=$rc sanitizers $([ $status -eq 0 ] && echo clean || echo FAILED)"
+[ "$rc" -eq 0 ] && [ "$status" -eq 0 ]

@@ -71,7 +71,9 @@ TEST_CASE("GPU Jacobi matches the CPU backend for every accumulation strategy", 
   check(cache);
   check(atomic);
   check(gather);
-  CHECK(cache.stats.reduction_passes == cpu.stats.reduction_passes);
+  CHECK(cache.stats.reduction_passes == solve_pile<device::cpu, UpdateCache>(s).stats.reduction_passes);
+  CHECK(cache.stats.reduction_passes >= 3);  // a sphere of the pile has 5 to 8 contacts
+  CHECK(gather.stats.reduction_passes == 0);
   CHECK(max_abs_diff(cache.v, atomic.v) < vel_tol);
   CHECK(max_abs_diff(cache.v, gather.v) < vel_tol);
   CHECK(max_abs_diff(gather.v, solve_pile<device::gpu, Gather>(s).v) == 0.0f);  // gather is deterministic

@@ -1,0 +1,122 @@
+// The queued time step on the GPU: queued steps equal steps one by one, late
+// statistics equal those read at once, a NaN in one body's state stops the
+// step naming the body and leaves every body as it was, and detection grows
+// its lists exactly as the CPU backend does.
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "catch_compat.hpp"
+#include "../host/test_rbd_scenes.hpp"
+
+using namespace rbd_test;
+
+namespace {
+
+// Writes a NaN into component 0 of body i's velocity, on the device.
+template <class BV>
+struct PoisonVelocity {
+  BV b;
+  std::size_t i;
+  GPUSOLVE_HD void operator()(std::size_t) const { b.v(i, 0) = std::numeric_limits<float>::quiet_NaN(); }
+};
+
+std::vector<float> host_state(const BodySet<float>& set) {
+  std::vector<float> out;
+  for (std::size_t i = 0; i < set.size(); ++i)
+    for (int c = 0; c < 3; ++c) out.push_back(set[i].pos[c]), out.push_back(set[i].v[c]), out.push_back(set[i].w[c]);
+  return out;
+}
+
+SolverSettings<float> settings() {
+  SolverSettings<float> s;
+  s.friction = 0.5f;
+  s.margin = 0;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("GPU World: queued steps and late statistics equal steps taken one by one", "[rbd_step][gpu]") {
+  auto set_a = pile<float>(5, 4), set_b = set_a;
+  World<device::gpu, float> a(set_a, settings()), b(set_b, settings());
+  std::vector<StepStats<float>> at_once;
+  for (int i = 0; i < 30; ++i) at_once.push_back(a.step());
+  b.advance(1);
+  for (int i = 1; i < 30; ++i) {
+    b.advance(1);
+    const auto late = b.previous_stats();
+    const auto& now = at_once[std::size_t(i - 1)];
+    INFO("step " << i - 1);
+    CHECK(late.solver.contacts == now.solver.contacts);
+    CHECK(late.solver.iterations == now.solver.iterations);
+    CHECK(late.max_penetration == now.max_penetration);
+    CHECK(late.kinetic_energy == now.kinetic_energy);
+    CHECK(late.potential_energy == now.potential_energy);
+  }
+  CHECK(at_once.back().solver.contacts > 100);
+  CHECK(at_once.back().max_penetration > 0);
+  a.syncHost(), b.syncHost();
+  CHECK(host_state(set_a) == host_state(set_b));  // the GPU path is deterministic
+  b.advance(10);
+  for (int i = 0; i < 10; ++i) a.step();
+  a.syncHost(), b.syncHost();
+  CHECK(host_state(set_a) == host_state(set_b));
+}
+
+TEST_CASE("GPU World: a NaN in one body's velocity names the body and the step, and moves nothing",
+          "[rbd_step][gpu]") {
+  auto set = pile<float>(4, 3);
+  World<device::gpu, float> w(set, settings());
+  w.advance(5);
+  w.syncHost();
+  const std::vector<float> before = host_state(set);
+  const std::size_t victim = 9;
+  using BV = typename Bodies<device::gpu, float>::View;
+  launch(device::gpu{}, 1, PoisonVelocity<BV>{w.bodies().view(), victim});
+  try {
+    w.step();
+    FAIL("the step ran with a NaN velocity");
+  } catch (const NonFiniteStateError& e) {
+    CHECK(e.body() == victim);
+    CHECK(e.field() == "v");
+    CHECK(e.step() == 5);
+  }
+  w.syncHost();
+  const std::vector<float> after = host_state(set);
+  REQUIRE(after.size() == before.size());
+  std::size_t changed = 0;
+  for (std::size_t k = 0; k < after.size(); ++k) changed += !(after[k] == before[k]);
+  CHECK(changed == 1);                     // the poisoned component alone
+  CHECK(std::isnan(set[victim].v[0]));
+}
+
+TEST_CASE("GPU collision detection grows its lists and finds what the CPU finds", "[rbd_step][gpu][collision]") {
+  BodySet<float> s;  // 60 spheres overlapping each other and a plane: 1830 contacts
+  for (std::size_t i = 0; i < 60; ++i)
+    s.add_sphere({0.05f * float(i % 5), 0.05f * float((i / 5) % 4), 0.05f + 0.1f * float(i / 20)}, 0.5f, 1.f);
+  s.add_plane({0, 0, 1}, 0.f);
+  auto keys = [&](auto device) {
+    using Device = decltype(device);
+    BodyManager<Device, float> m(s);
+    m.syncDeviceFull();
+    CollisionDetection<Device, float> cd;
+    Contacts<Device, float, Frictionless> c;
+    const std::size_t n = cd.detect(m.device(), c, 0.f);
+    REQUIRE(cd.detect(m.device(), c, 0.f) == n);  // again, with the grown lists
+    std::vector<std::uint32_t> a(n), b(n);
+    if constexpr (std::is_same_v<Device, device::gpu>) {
+      GPUSOLVE_CUDA_CHECK(cudaMemcpy(a.data(), c.a.data(), n * 4, cudaMemcpyDeviceToHost));
+      GPUSOLVE_CUDA_CHECK(cudaMemcpy(b.data(), c.b.data(), n * 4, cudaMemcpyDeviceToHost));
+    } else {
+      for (std::size_t i = 0; i < n; ++i) a[i] = c.a[i], b[i] = c.b[i];
+    }
+    std::vector<std::uint64_t> out;
+    for (std::size_t i = 0; i < n; ++i) out.push_back(pair_key(a[i], b[i]));
+    return out;
+  };
+  const auto cpu = keys(device::cpu{});
+  CHECK(cpu.size() == 60 * 59 / 2 + 60);
+  CHECK(keys(device::gpu{}) == cpu);
+}
