@@ -1,7 +1,8 @@
 // The whole time step, per phase and in total, on the GPU and the CPU backend.
 //
 // Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance]
-//                          [--settle 900] [--steps 100] [--cpu-steps 20] [--cpu-max 1000000] [--csv FILE]
+//                          [--graphs on,off] [--settle 900] [--steps 100] [--cpu-steps 20]
+//                          [--cpu-max 1000000] [--csv FILE]
 //
 // For each N the shared pile (bench/shared_pile.hpp, ../shared/bench/PILE.md)
 // falls for `settle` steps on the GPU at the library's defaults; every timing
@@ -9,13 +10,16 @@
 //   jacobi10:  projected Jacobi (gather), exactly 10 iterations per step, one check;
 //   defaults:  World<device::gpu> with SolverSettings{} (APGD, 50 iterations);
 //   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500.
+// --graphs: SolverSettings::graphs on (the default: detection and each run of
+// iterations between checks replayed from CUDA graphs) and/or off (launch by launch).
 // GPU, after 20 warm-up steps:
 //   step     median of CUDA-event times around each advance(1): what a step loop pays;
 //   queued   advance(steps) timed as one: steps queued back to back, divided by steps;
 //   phases   medians of the World's per-phase event times (set_phase_timing) over
 //            as many more steps.
-// CPU backend: the same World on device::cpu from the same state (host clock,
-// single thread), after 2 warm-up steps; sizes above --cpu-max are skipped.
+// CPU backend: the same World on device::cpu from the same state (host clock;
+// its kernels run as OpenMP loops where the build has OpenMP, the thread count
+// is printed), after 2 warm-up steps; sizes above --cpu-max are skipped.
 // Also printed: contacts, iterations, the largest penetration over the timed
 // steps and the median residual: the accuracy the time bought.
 #include <algorithm>
@@ -26,6 +30,10 @@
 #include <exception>
 #include <string>
 #include <vector>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 #include "gpusolve/rbd/world.hpp"
 #include "shared_pile.hpp"
@@ -41,6 +49,7 @@ using T = float;
 struct Options {
   std::vector<std::size_t> n{1000, 10000, 100000, 1000000};
   std::vector<std::string> modes{"jacobi10", "defaults", "tolerance"};
+  std::vector<std::string> graphs{"on"};
   long settle = 900, steps = 100, cpu_steps = 20;
   std::size_t cpu_max = 1000000;
   std::string csv;
@@ -52,8 +61,9 @@ struct Row {
   std::size_t contacts = 0, steps = 0;
 };
 
-SolverSettings<T> settings_for(const std::string& mode) {
+SolverSettings<T> settings_for(const std::string& mode, bool graphs) {
   SolverSettings<T> s;
+  s.graphs = graphs;
   s.friction = T(0.5);  // PILE.md
   if (mode == "jacobi10") {
     s.max_iterations = 10, s.check_every = 10;
@@ -140,8 +150,8 @@ Row time_backend(bool gpu, const rbd::BodySet<T>& set, const SolverSettings<T>& 
   return gpu ? time_gpu<Method>(set, s, steps) : time_cpu<Method>(set, s, steps);
 }
 
-Row time_mode(bool gpu, const std::string& mode, const rbd::BodySet<T>& set, long steps) {
-  const SolverSettings<T> s = settings_for(mode);
+Row time_mode(bool gpu, const std::string& mode, bool graphs, const rbd::BodySet<T>& set, long steps) {
+  const SolverSettings<T> s = settings_for(mode, graphs);
   if (mode == "jacobi10") return time_backend<rbd::Jacobi<rbd::Gather>>(gpu, set, s, steps);
   return time_backend<rbd::AcceleratedJacobi<rbd::Gather>>(gpu, set, s, steps);
 }
@@ -151,12 +161,13 @@ Row time_mode(bool gpu, const std::string& mode, const rbd::BodySet<T>& set, lon
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
+      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--graphs on,off] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
       "[--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--n") o.n = parse_list<std::size_t>(option_value(argc, argv, i));
     else if (a == "--modes") o.modes = split(option_value(argc, argv, i));
+    else if (a == "--graphs") o.graphs = split(option_value(argc, argv, i));
     else if (a == "--settle") o.settle = std::stol(option_value(argc, argv, i));
     else if (a == "--steps") o.steps = std::max(1L, std::stol(option_value(argc, argv, i)));
     else if (a == "--cpu-steps") o.cpu_steps = std::max(1L, std::stol(option_value(argc, argv, i)));
@@ -166,9 +177,15 @@ int main(int argc, char** argv) {
   }
   try {
     const std::string gpu_name = print_banner("gpusolve whole-step benchmark: the shared pile, per phase and in total");
+#if defined(_OPENMP)
+    const int cpu_threads = omp_get_max_threads();
+#else
+    const int cpu_threads = 1;
+#endif
+    std::printf("CPU backend: %d thread(s)\n", cpu_threads);
     std::FILE* csv = open_csv(o.csv,
-                              "backend,n,mode,contacts,steps,ms_step_median,ms_step_queued,ms_detection,ms_solve,"
-                              "ms_integration,iterations_mean,max_penetration,residual_median,gpu");
+                              "backend,n,mode,graphs,contacts,steps,ms_step_median,ms_step_queued,ms_detection,ms_solve,"
+                              "ms_integration,iterations_mean,max_penetration,residual_median,cpu_threads,gpu");
     for (std::size_t n : o.n) {
       rbd::BodySet<T> set = shared_pile<T>(n);
       {
@@ -184,21 +201,26 @@ int main(int argc, char** argv) {
       }
       for (const bool gpu : {true, false}) {
         if (!gpu && n > o.cpu_max) continue;
-        for (const auto& mode : o.modes) {
-          const long steps = gpu ? o.steps : o.cpu_steps;
-          std::printf("... %s n=%zu %s, %ld steps\n", gpu ? "gpu" : "cpu", n, mode.c_str(), steps);
-          std::fflush(stdout);
-          const Row r = time_mode(gpu, mode, set, steps);
-          std::printf("    %zu contacts: step %.3f ms (queued %.3f ms), detection %.3f, solve %.3f, integration "
-                      "%.3f ms; %.1f iterations, penetration %.4f%%, residual %.3g\n",
-                      r.contacts, r.step_ms, r.queued_ms, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations,
-                      100 * r.penetration, r.residual);
-          std::fflush(stdout);
-          if (csv)
-            std::fprintf(csv, "%s,%zu,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%s\n", gpu ? "gpu" : "cpu", n,
-                         mode.c_str(), r.contacts, r.steps, r.step_ms, r.queued_ms, r.detection_ms, r.solve_ms,
-                         r.integration_ms, r.iterations, r.penetration, r.residual, gpu_name.c_str());
-        }
+        for (const auto& mode : o.modes)
+          for (const auto& g : o.graphs) {
+            if (g != "on" && g != "off") throw InvalidArgumentError("bench: --graphs takes on and/or off");
+            if (!gpu && &g != &o.graphs.front()) continue;  // the CPU backend has no graphs: one row
+            const long steps = gpu ? o.steps : o.cpu_steps;
+            std::printf("... %s n=%zu %s graphs %s, %ld steps\n", gpu ? "gpu" : "cpu", n, mode.c_str(),
+                        gpu ? g.c_str() : "-", steps);
+            std::fflush(stdout);
+            const Row r = time_mode(gpu, mode, g == "on", set, steps);
+            std::printf("    %s %s %s: %zu contacts: step %.3f ms (queued %.3f ms), detection %.3f, solve %.3f, "
+                        "integration %.3f ms; %.1f iterations, penetration %.4f%%, residual %.3g\n",
+                        gpu ? "gpu" : "cpu", mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.step_ms, r.queued_ms,
+                        r.detection_ms, r.solve_ms, r.integration_ms, r.iterations, 100 * r.penetration, r.residual);
+            std::fflush(stdout);
+            if (csv)
+              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s\n",
+                           gpu ? "gpu" : "cpu", n, mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.steps, r.step_ms,
+                           r.queued_ms, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations, r.penetration,
+                           r.residual, cpu_threads, gpu_name.c_str());
+          }
       }
     }
     if (csv) std::fclose(csv);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "catch_compat.hpp"
@@ -63,6 +64,29 @@ TEST_CASE("GPU World: queued steps and late statistics equal steps taken one by 
   for (int i = 0; i < 10; ++i) a.step();
   a.syncHost(), b.syncHost();
   CHECK(host_state(set_a) == host_state(set_b));
+}
+
+TEST_CASE("GPU World: CUDA graphs replay exactly the kernels launched one by one", "[rbd_step][gpu]") {
+  auto run = [](auto method, bool graphs, std::size_t check_every) {
+    using Method = decltype(method);
+    auto set = pile<float>(5, 4);
+    SolverSettings<float> s = settings();
+    s.graphs = graphs;
+    s.check_every = check_every;  // 50: one graph per solve; 7: a graph per run between checks, the last one short
+    World<device::gpu, float, ConeFriction, Method> w(set, s);
+    std::vector<std::size_t> iterations;
+    for (int i = 0; i < 25; ++i) iterations.push_back(w.step().solver.iterations);
+    w.syncHost();
+    return std::make_pair(host_state(set), iterations);
+  };
+  for (std::size_t every : {std::size_t(50), std::size_t(7)}) {
+    INFO("check_every " << every);
+    const auto apgd = run(AcceleratedJacobi<Gather>{}, true, every);
+    CHECK(apgd == run(AcceleratedJacobi<Gather>{}, false, every));
+    CHECK(run(Jacobi<UpdateCache>{}, true, every) == run(Jacobi<UpdateCache>{}, false, every));
+    CHECK(run(Substepping<>{}, true, every) == run(Substepping<>{}, false, every));
+    CHECK(apgd.second.back() > 0);
+  }
 }
 
 TEST_CASE("GPU World: a NaN in one body's velocity names the body and the step, and moves nothing",

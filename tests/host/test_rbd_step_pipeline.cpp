@@ -74,6 +74,18 @@ TEST_CASE("queued steps: advance(N) moves the bodies exactly as N calls of step(
   same_stats(a.latest_stats(), b.latest_stats());
 }
 
+TEST_CASE("queued steps: the graphs setting leaves the CPU backend's loop as it is", "[rbd_step]") {
+  auto set_a = pile<double>(3, 2), set_b = set_a;
+  SolverSettings<double> s = pile_settings();
+  s.check_every = 7;  // runs of iterations between checks, the last one short
+  World<device::cpu, double> a(set_a, s);
+  s.graphs = false;
+  World<device::cpu, double> b(set_b, s);
+  a.advance(20), b.advance(20);
+  CHECK(state(a) == state(b));
+  CHECK(a.latest_stats().solver.iterations == b.latest_stats().solver.iterations);
+}
+
 TEST_CASE("phase timing: measured when asked, zero otherwise", "[rbd_step]") {
   auto set = pile<double>(3, 2);
   World<device::cpu, double> w(set, pile_settings());

@@ -108,6 +108,7 @@ class World {
     const math::Vector3<T> g(s.gravity[0], s.gravity[1], s.gravity[2]);
     Slot& slot = slots_[steps_ % 2];  // held the step before the previous one
     if (timing_) slot.marks.mark(0, stream_);
+    detection_.set_graphs(s.graphs);
     try {
       detection_.detect(bodies, contacts_, s.margin, s.friction, stream_);
     } catch (const NonFiniteStateError& e) {  // nothing was moved: say which step it stopped

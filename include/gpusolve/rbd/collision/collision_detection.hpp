@@ -19,6 +19,7 @@
 #include "gpusolve/rbd/contacts/contacts.hpp"
 #include "gpusolve/rbd/collision/narrow_phase.hpp"
 #include "gpusolve/rbd/detail/device_algorithms.hpp"
+#include "gpusolve/rbd/detail/graph_replay.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/detail/thrust_backend.hpp"
 
@@ -162,9 +163,18 @@ class CollisionDetection {
     detail::ensure_size(non_finite_, 1);
     if (contacts.capacity() < 4 * n) contacts.resize(4 * n);
     for (;;) {
-      grid_.queue(bodies, margin, stream);
       contacts.resize(contacts.capacity());  // written up to the capacity, trimmed below
-      queue_contacts(b, contacts.view(), margin, mu, stream);
+      const auto cv = contacts.view();
+      auto queue = [&](stream_t q) {
+        grid_.queue(bodies, margin, q);
+        queue_contacts(b, cv, margin, mu, q);
+      };
+      if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
+        graph_.run(queue, stream);
+      } else {
+        queue(stream);
+        sized_for_ = n;
+      }
       const auto s = detail::read_back<Device>(summary_.data(), 0, stream);
       if (s.non_finite != ~std::uint64_t(0)) throw detail::non_finite_state(s.non_finite);
       if (!(s.cell <= std::numeric_limits<T>::max()))
@@ -180,6 +190,9 @@ class CollisionDetection {
   }
 
   const UniformGrid<Device, T>& grid() const { return grid_; }
+  // GPU: queue the detection's kernels as one CUDA graph (detail/graph_replay.hpp;
+  // on by default, the World follows SolverSettings::graphs).
+  void set_graphs(bool on) { graphs_ = on; }
 
  private:
   template <class CView>
@@ -205,6 +218,9 @@ class CollisionDetection {
   D1<std::uint64_t> non_finite_;
   D1<detail::DetectionSummary<T>> summary_;
   detail::DeviceAlgorithms<Device> algorithms_;
+  detail::GraphReplay<Device> graph_;
+  bool graphs_ = true;
+  std::size_t sized_for_ = 0;  // the body count the scratch stores were last sized for
 };
 
 }  // namespace gpusolve::rbd

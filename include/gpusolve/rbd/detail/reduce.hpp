@@ -82,6 +82,22 @@ class MaxReducer {
 template <class Device, class T>
 class SumInto {
  public:
+  // Sizes the temporary storage of a sum over n values of f into out, so that
+  // the call itself allocates nothing (it may then be captured into a CUDA graph).
+  template <class F>
+  void reserve(std::size_t n, F f, T* out) {
+#if GPUSOLVE_HAS_NVCC
+    if constexpr (std::is_same_v<Device, device::gpu>) {
+      const thrust::counting_iterator<std::size_t> first(0);
+      std::size_t bytes = 0;
+      GPUSOLVE_CUDA_CHECK(
+          cub::DeviceReduce::TransformReduce(nullptr, bytes, first, out, n, thrust::plus<T>(), f, T(0), stream_t{}));
+      if (temp_.size_x() < bytes) temp_.resize(bytes);
+    }
+#endif
+    (void)n, (void)f, (void)out;
+  }
+
   template <class F>
   void operator()(std::size_t n, F f, T* out, stream_t stream = stream_t{}) {
     if constexpr (std::is_same_v<Device, device::cpu>) {

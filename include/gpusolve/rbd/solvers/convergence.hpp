@@ -61,6 +61,11 @@ class ConvergenceMonitor {
   // Whether iteration `it` (1-based) measures the residual: every check_every
   // iterations and always the last one, so the final residual is known.
   bool checks(std::size_t it) const { return it % s_.check_every == 0 || it == s_.max_iterations; }
+  // The first iteration from `it` on that checks.
+  std::size_t next_check(std::size_t it) const {
+    const std::size_t k = (it + s_.check_every - 1) / s_.check_every * s_.check_every;
+    return k < s_.max_iterations ? k : s_.max_iterations;
+  }
 
   // Records the residual after iteration `it`; returns true when the solve must stop.
   // Diverged: the residual is not finite (NaN/inf in impulses or velocities), or it

@@ -15,6 +15,7 @@
 #include "gpusolve/rbd/contacts/contacts.hpp"
 #include "gpusolve/rbd/solvers/convergence.hpp"
 #include "gpusolve/rbd/solvers/momentum.hpp"
+#include "gpusolve/rbd/detail/graph_replay.hpp"
 #include "gpusolve/rbd/detail/reduce.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
@@ -72,17 +73,28 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       } else {
         contacts.x.fill(T(0), stream);
       }
-      momentum_.begin(b, c, stream);
+      momentum_.begin(b, c, rhs, stream);
       ConvergenceMonitor<T> monitor(s, st);
-      for (std::size_t it = 1;; ++it) {
-        const bool measure = monitor.checks(it);
-        launch(dev, nc,
-               JacobiContact<Model, BV, CV, Sink, T>{{b, c, rhs, T(1) / s.dt, s.correction},
-                                                     {b, c, rhs, acc_.sink(), omega, measure, residual}},
-               stream);
-        acc_.apply(b, stream);
-        if (measure && monitor.stop(it, this->residual(b, nc, stream))) break;
+      // Iterations `first` ... `last`, the last one measuring the residual.
+      auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
+        for (std::size_t it = first; it <= last; ++it) {
+          launch(dev, nc,
+                 JacobiContact<Model, BV, CV, Sink, T>{{b, c, rhs, T(1) / s.dt, s.correction},
+                                                       {b, c, rhs, acc_.sink(), omega, it == last, residual}},
+                 q);
+          acc_.apply(b, q);
+          if (it != last) momentum_.after_iteration(b, c, rhs, q);
+        }
+      };
+      for (std::size_t first = 1;;) {
+        const std::size_t last = monitor.next_check(first);
+        if (s.graphs)
+          graph_.run([&](stream_t q) { iterations(first, last, q); }, stream);
+        else
+          iterations(first, last, stream);
+        if (monitor.stop(last, this->residual(b, nc, stream))) break;
         momentum_.after_iteration(b, c, rhs, stream);
+        first = last + 1;
       }
     };
     solve_relaxed(s, omega_of<JacobiSolver>(s), b, this->start_, stats, attempt, stream);
@@ -92,6 +104,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
  private:
   Accumulator<Strategy, Device, T> acc_;
   Momentum<MomentumTag, Device, T> momentum_;
+  detail::GraphReplay<Device> graph_;  // SolverSettings::graphs
 };
 
 // The method tag of projected Jacobi (a model of the Solver concept, solver.hpp).

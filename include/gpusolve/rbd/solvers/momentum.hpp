@@ -19,14 +19,14 @@ struct NoMomentum {};
 struct Nesterov {};
 
 // Momentum<Tag, Device, T>: begin() when an attempt's start impulses and
-// velocities agree; after_iteration() once per iteration that goes on, with
+// velocities agree (sizes all its storage); after_iteration() once per iteration that goes on, with
 // contacts.x and the velocities at the projected iterate and rhs the gradient
 // it was computed from.
 template <class Tag, class Device, class T>
 class Momentum {
  public:
   template <class BV, class CV>
-  void begin(const BV&, const CV&, stream_t) {}
+  void begin(const BV&, const CV&, VectorD2View<T>, stream_t) {}
   template <class BV, class CV>
   void after_iteration(const BV&, const CV&, VectorD2View<T>, stream_t) {}
 };
@@ -107,11 +107,13 @@ template <class Device, class T>
 class Momentum<Nesterov, Device, T> {
  public:
   template <class BV, class CV>
-  void begin(const BV& b, const CV& c, stream_t stream) {
+  void begin(const BV& b, const CV& c, VectorD2View<T> rhs, stream_t stream) {
     detail::ensure_size(px_, c.size(), c.x.size_y());
     detail::ensure_size(pv_, b.size(), 3);
     detail::ensure_size(pw_, b.size(), 3);
     if (state_.size_x() == 0) state_.resize(3);
+    // Sized here, so that after_iteration allocates nothing (it may be captured into a graph).
+    sum_.reserve(c.size(), detail::StepAlongGradient<CV, T>{c, rhs, px_.view()}, state_.data() + 2);
     launch(Device{}, 1, detail::ResetMomentum<T>{state_.data()}, stream);
     extrapolate(b, c, stream);  // beta 0: records the start as x_prev
   }

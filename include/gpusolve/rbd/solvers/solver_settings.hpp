@@ -54,6 +54,11 @@ struct SolverSettings {
   // the other methods ignore it. max_iterations is shared among the substeps.
   std::size_t substeps = 4;
   bool throw_on_divergence = false;  // solve() throws DivergenceError instead of reporting it
+  // GPU: the Jacobi-family solvers replay each run of iterations between two
+  // residual checks from one CUDA graph (detail/graph_replay.hpp): the same
+  // kernels in the same order, about 1 us per kernel instead of a launch each.
+  // false launches them one by one (profilers, debugging). The CPU ignores it.
+  bool graphs = true;
 
   // Throws InvalidArgumentError naming the first offending field.
   void validate() const {

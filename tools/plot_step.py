@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""Charts the CSVs of gpusolve_bench_step (bench/step.cu), log-log:
+
+  left:  time per whole step against the number of spheres, one line per
+         backend, mode and graphs setting;
+  right: the GPU's detection and solve phases against the number of spheres,
+         at 10 Jacobi iterations and at the defaults (graphs as run).
+
+Usage: python3 tools/plot_step.py CSV [CSV ...] -o step.png
+"""
+import argparse
+import sys
+
+from plot_atlas import pyplot, read
+
+
+def series(rows, key, value):
+    """{label: sorted [(n, value)]} for rows grouped by key(row)."""
+    out = {}
+    for r in rows:
+        out.setdefault(key(r), []).append((int(r["n"]), float(r[value])))
+    return {k: sorted(v) for k, v in out.items()}
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("csv", nargs="+")
+    ap.add_argument("-o", "--out", required=True)
+    a = ap.parse_args(argv)
+    rows = read(a.csv)
+    if not rows:
+        sys.exit("plot_step: no rows")
+    plt = pyplot()
+    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5.2))
+
+    def label(r):
+        graphs = "" if r["backend"] == "cpu" else (", graphs " + r["graphs"])
+        return f'{r["backend"]} {r["mode"]}{graphs}'
+
+    for name, pts in sorted(series(rows, label, "ms_step_median").items()):
+        style = "--" if name.startswith("cpu") else ("-" if name.endswith("on") else ":")
+        left.plot([p[0] for p in pts], [p[1] for p in pts], style, marker="o", label=name)
+    left.set_xscale("log"), left.set_yscale("log")
+    left.set_xlabel("spheres (shared pile, settled)")
+    left.set_ylabel("ms per whole step (median)")
+    left.set_title("time per step")
+    left.grid(True, which="both", alpha=0.3)
+    left.legend(fontsize=7)
+
+    gpu = [r for r in rows if r["backend"] == "gpu" and r["mode"] in ("jacobi10", "defaults")]
+    for phase in ("ms_detection", "ms_solve"):
+        for name, pts in sorted(series(gpu, label, phase).items()):
+            right.plot([p[0] for p in pts], [p[1] for p in pts], "-" if phase == "ms_solve" else "--", marker="o",
+                       label=f'{phase[3:]}: {name[4:]}')
+    right.set_xscale("log"), right.set_yscale("log")
+    right.set_xlabel("spheres")
+    right.set_ylabel("ms per step (median, CUDA events)")
+    right.set_title("GPU phases")
+    right.grid(True, which="both", alpha=0.3)
+    right.legend(fontsize=7)
+    threads = rows[0].get("cpu_threads", "?")
+    fig.suptitle(f'gpusolve whole step on {rows[0]["gpu"]} (cpu rows: the host backend, {threads} OpenMP threads)')
+    fig.tight_layout()
+    fig.savefig(a.out, dpi=110)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
