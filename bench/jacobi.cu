@@ -14,8 +14,8 @@
 // per check     = (C - B) / (N1 + N - 1): one residual max-reduction, read by
 //                 the host, which waits for the GPU each time;
 // graph         = the same iteration's kernels captured N times into one CUDA
-//                 graph once and replayed: solve() also replays a graph
-//                 (SolverSettings::graphs) but captures and updates it per solve.
+//                 graph once and replayed (SolverSettings::graphs makes solve()
+//                 capture and update one per solve, which costs more than it saves).
 // The tolerance is the smallest positive float and divergence detection is
 // off, so every solve runs its full count; the program checks that it did.
 // omega defaults to 0.3: on this close-packed pile (12 contacts per sphere) the
@@ -275,10 +275,10 @@ int main(int argc, char** argv) {
   try {
     const std::string gpu = print_banner("gpusolve bench: projected Jacobi iteration (float)");
     std::printf(
-        "JacobiSolver::solve replays the iterations between two residual checks from one CUDA graph, captured\n"
-        "and updated per solve (SolverSettings::graphs); the host waits for the GPU only at a check. us/iter:\n"
-        "solve() with one check; graph: the same kernels from a graph captured once and replayed (no capture\n"
-        "cost); us/check: one residual check with its host sync; L/i: launches/iteration;\n"
+        "JacobiSolver::solve launches each iteration's kernels (with SolverSettings::graphs, the default here\n"
+        "off, it captures the iterations between checks into a graph per solve); the host waits for the GPU\n"
+        "only at a check. us/iter: solve() with one check; graph: the same kernels from a graph captured once\n"
+        "and replayed (no capture cost); us/check: one residual check with its host sync; L/i: launches/iteration;\n"
         "GB/s: modelled bytes (see source) / time; |dv|: max velocity difference graph vs solve() (0: same work).\n");
     std::FILE* csv = open_csv(
         opt.csv,

@@ -10,8 +10,8 @@
 //   jacobi10:  projected Jacobi (gather), exactly 10 iterations per step, one check;
 //   defaults:  World<device::gpu> with SolverSettings{} (APGD, 50 iterations);
 //   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500.
-// --graphs: SolverSettings::graphs on (the default: detection and each run of
-// iterations between checks replayed from CUDA graphs) and/or off (launch by launch).
+// --graphs: SolverSettings::graphs on (detection and each run of iterations
+// between checks replayed from CUDA graphs) and/or off (the default: launch by launch).
 // GPU, after 20 warm-up steps:
 //   step     median of CUDA-event times around each advance(1): what a step loop pays;
 //   queued   advance(steps) timed as one: steps queued back to back, divided by steps;
@@ -49,7 +49,7 @@ using T = float;
 struct Options {
   std::vector<std::size_t> n{1000, 10000, 100000, 1000000};
   std::vector<std::string> modes{"jacobi10", "defaults", "tolerance"};
-  std::vector<std::string> graphs{"on"};
+  std::vector<std::string> graphs{"off"};
   long settle = 900, steps = 100, cpu_steps = 20;
   std::size_t cpu_max = 1000000;
   std::string csv;

@@ -191,7 +191,7 @@ class CollisionDetection {
 
   const UniformGrid<Device, T>& grid() const { return grid_; }
   // GPU: queue the detection's kernels as one CUDA graph (detail/graph_replay.hpp;
-  // on by default, the World follows SolverSettings::graphs).
+  // off by default, the World follows SolverSettings::graphs).
   void set_graphs(bool on) { graphs_ = on; }
 
  private:
@@ -219,7 +219,7 @@ class CollisionDetection {
   D1<detail::DetectionSummary<T>> summary_;
   detail::DeviceAlgorithms<Device> algorithms_;
   detail::GraphReplay<Device> graph_;
-  bool graphs_ = true;
+  bool graphs_ = false;
   std::size_t sized_for_ = 0;  // the body count the scratch stores were last sized for
 };
 

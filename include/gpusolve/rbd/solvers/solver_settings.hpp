@@ -54,11 +54,14 @@ struct SolverSettings {
   // the other methods ignore it. max_iterations is shared among the substeps.
   std::size_t substeps = 4;
   bool throw_on_divergence = false;  // solve() throws DivergenceError instead of reporting it
-  // GPU: the Jacobi-family solvers replay each run of iterations between two
-  // residual checks from one CUDA graph (detail/graph_replay.hpp): the same
-  // kernels in the same order, about 1 us per kernel instead of a launch each.
-  // false launches them one by one (profilers, debugging). The CPU ignores it.
-  bool graphs = true;
+  // GPU: collision detection and the Jacobi-family solvers' runs of iterations
+  // between two residual checks are captured into CUDA graphs, updated in place
+  // and replayed (detail/graph_replay.hpp): the same kernels in the same order.
+  // Off by default: capturing anew every step (the contact count changes the
+  // kernels' arguments) cost more than the launches it saved on the shared pile
+  // on an H200 (bench/step.cu, README: 1.90 against 2.31 ms per step at the
+  // defaults for 10 000 spheres). The CPU ignores it.
+  bool graphs = false;
 
   // Throws InvalidArgumentError naming the first offending field.
   void validate() const {
