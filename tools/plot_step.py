@@ -38,10 +38,10 @@ def main(argv):
         return f'{r["backend"]} {r["mode"]}{graphs}'
 
     for name, pts in sorted(series(rows, label, "ms_step_median").items()):
-        style = "--" if name.startswith("cpu") else ("-" if name.endswith("on") else ":")
+        style = "--" if name.startswith("cpu") else (":" if name.endswith("on") else "-")
         left.plot([p[0] for p in pts], [p[1] for p in pts], style, marker="o", label=name)
     left.set_xscale("log"), left.set_yscale("log")
-    left.set_xlabel("spheres (shared pile, settled)")
+    left.set_xlabel("spheres (the shared pile of PILE.md, after it fell for a while)")
     left.set_ylabel("ms per whole step (median)")
     left.set_title("time per step")
     left.grid(True, which="both", alpha=0.3)
@@ -58,8 +58,8 @@ def main(argv):
     right.set_title("GPU phases")
     right.grid(True, which="both", alpha=0.3)
     right.legend(fontsize=7)
-    threads = rows[0].get("cpu_threads", "?")
-    fig.suptitle(f'gpusolve whole step on {rows[0]["gpu"]} (cpu rows: the host backend, {threads} OpenMP threads)')
+    threads = rows[0].get("cpu_threads") or "thread count not recorded"
+    fig.suptitle(f'gpusolve whole step on {rows[0]["gpu"]} (cpu rows: the host backend on its host, {threads})')
     fig.tight_layout()
     fig.savefig(a.out, dpi=110)
 
