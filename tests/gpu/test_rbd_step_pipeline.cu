@@ -66,7 +66,7 @@ TEST_CASE("GPU World: queued steps and late statistics equal steps taken one by 
   CHECK(host_state(set_a) == host_state(set_b));
 }
 
-TEST_CASE("GPU World: CUDA graphs replay exactly the kernels launched one by one", "[rbd_step][gpu]") {
+TEST_CASE("GPU World: CUDA graphs replay exactly the kernels launched one by one", "[rbd_step][gpu][graphs]") {
   auto run = [](auto method, bool graphs, std::size_t check_every) {
     using Method = decltype(method);
     auto set = pile<float>(5, 4);
