@@ -169,3 +169,18 @@ TEST_CASE("collision detection grows its pair and contact lists and drops none",
   // A second detection reuses the grown lists and finds the same.
   CHECK(cd.detect(m.device(), c, 0.f) == nc);
 }
+
+TEST_CASE("the solver's runs of iterations end at each residual check and at the last iteration", "[rbd_step]") {
+  SolverSettings<double> s;
+  s.check_every = 7, s.max_iterations = 50;
+  SolverStats<double> stats;
+  const ConvergenceMonitor<double> m(s, stats);
+  CHECK(m.next_check(1) == 7);
+  CHECK(m.next_check(7) == 7);
+  CHECK(m.next_check(8) == 14);
+  CHECK(m.next_check(43) == 49);
+  CHECK(m.next_check(50) == 50);  // the last iteration always checks, off the grid of 7
+  for (std::size_t it = 1; it <= 50; ++it) CHECK(m.checks(m.next_check(it)));
+  s.check_every = 50;
+  CHECK(m.next_check(1) == 50);  // the defaults: one run, one check
+}
