@@ -30,10 +30,14 @@ GPUSOLVE_HD inline std::uint32_t pair_b(std::uint64_t k) { return std::uint32_t(
 
 namespace detail {
 
-// Bodies on the grid: spheres that are not removed.
+// Bodies on the grid: spheres that are not removed, at a finite position (a
+// NaN or infinity cannot be placed in a cell; detection reports the body).
 template <class View>
 GPUSOLVE_HD bool on_grid(const View& b, std::size_t i) {
-  return b.shape[i] == sphere && b.status[i] != removed;
+  if (b.shape[i] != sphere || b.status[i] == removed) return false;
+  for (std::size_t c = 0; c < 3; ++c)
+    if (!(b.pos(i, c) - b.pos(i, c) == 0)) return false;  // NaN and inf give NaN
+  return true;
 }
 
 // Two grid spheres whose surfaces are closer than `margin`.
