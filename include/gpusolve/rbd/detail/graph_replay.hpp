@@ -2,7 +2,6 @@
 // device pays about a microsecond per kernel instead of a launch each.
 #pragma once
 
-#include <cstddef>
 #include <type_traits>
 
 #include "gpusolve/core/config.hpp"
@@ -55,7 +54,6 @@ class GraphReplay {
         const cudaError_t e = cudaGraphInstantiate(&exec_, graph, 0);
         (void)cudaGraphDestroy(graph);
         GPUSOLVE_CUDA_CHECK(e);
-        ++instantiations_;
       } else {
         (void)cudaGraphDestroy(graph);
       }
@@ -69,15 +67,11 @@ class GraphReplay {
     }
   }
 
-  // How often a graph had to be instantiated (not merely updated).
-  std::size_t instantiations() const { return instantiations_; }
-
  private:
 #if GPUSOLVE_HAS_CUDART
   cudaStream_t capture_ = nullptr;
   cudaGraphExec_t exec_ = nullptr;
 #endif
-  std::size_t instantiations_ = 0;
 };
 
 }  // namespace gpusolve::rbd::detail
