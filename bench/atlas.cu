@@ -50,14 +50,6 @@ struct Options {
   std::string csv;
 };
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t a = 0;
-  for (std::size_t b; (b = s.find(',', a)) != std::string::npos; a = b + 1) out.push_back(s.substr(a, b - a));
-  out.push_back(s.substr(a));
-  return out;
-}
-
 struct Run {
   std::string scene, method, budget;
   std::size_t n = 0;
@@ -156,8 +148,8 @@ int main(int argc, char** argv) {
     if (a == "--scene") o.scene = option_value(argc, argv, i);
     else if (a == "--n") o.n = parse_list<std::size_t>(option_value(argc, argv, i));
     else if (a == "--ratios") o.ratios = parse_list<double>(option_value(argc, argv, i));
-    else if (a == "--methods") o.methods = split(option_value(argc, argv, i));
-    else if (a == "--budgets") o.budgets = split(option_value(argc, argv, i));
+    else if (a == "--methods") o.methods = parse_words(option_value(argc, argv, i));
+    else if (a == "--budgets") o.budgets = parse_words(option_value(argc, argv, i));
     else if (a == "--margins") o.margins = parse_list<double>(option_value(argc, argv, i));
     else if (a == "--dts") o.dts = parse_list<double>(option_value(argc, argv, i));
     else if (a == "--steps") o.steps = std::stol(option_value(argc, argv, i));

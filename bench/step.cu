@@ -76,49 +76,53 @@ SolverSettings<T> settings_for(const std::string& mode, bool graphs) {
   return s;
 }
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t a = 0;
-  for (std::size_t b; (b = s.find(',', a)) != std::string::npos; a = b + 1) out.push_back(s.substr(a, b - a));
-  out.push_back(s.substr(a));
-  return out;
-}
-
-void account(Row& r, const rbd::StepStats<T>& st, std::vector<double>& residuals) {
-  r.iterations += double(st.solver.total_iterations);
-  r.penetration = std::max(r.penetration, double(st.max_penetration));
-  residuals.push_back(double(st.solver.residual()));
-  r.contacts = st.solver.contacts;
-}
+// What the timed steps of one backend and mode leave: their times and figures.
+struct Samples {
+  std::vector<double> ms, residuals, detection, solve, integration;
+  Row row;
+  void accuracy(const rbd::StepStats<T>& st) {
+    row.iterations += double(st.solver.total_iterations);
+    row.penetration = std::max(row.penetration, double(st.max_penetration));
+    residuals.push_back(double(st.solver.residual()));
+    row.contacts = st.solver.contacts;
+  }
+  void phases(const rbd::StepStats<T>& st) {
+    detection.push_back(1e3 * st.time_detection);
+    solve.push_back(1e3 * st.time_solve);
+    integration.push_back(1e3 * st.time_integration);
+  }
+  Row medians(long steps) {
+    row.step_ms = spread(ms).median;
+    row.detection_ms = spread(detection).median, row.solve_ms = spread(solve).median;
+    row.integration_ms = spread(integration).median;
+    row.iterations /= double(steps);
+    row.residual = spread(residuals).median;
+    row.steps = std::size_t(steps);
+    return row;
+  }
+};
 
 template <class Method>
 Row time_gpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
   rbd::World<device::gpu, T, rbd::ConeFriction, Method> world(set, s);
   world.advance(20);
   EventTimer timer(stream_t{});
-  Row r;
-  std::vector<double> ms, residuals, det, sol, integ;
+  Samples x;
   for (long k = 0; k < steps; ++k) {
     timer.start();
     world.advance(1);
-    ms.push_back(timer.stop_ms());
-    account(r, world.latest_stats(), residuals);
+    x.ms.push_back(timer.stop_ms());
+    x.accuracy(world.latest_stats());
   }
   timer.start();
   world.advance(std::size_t(steps));
-  r.queued_ms = timer.stop_ms() / double(steps);
+  x.row.queued_ms = timer.stop_ms() / double(steps);
   world.set_phase_timing(true);
   for (long k = 0; k < steps; ++k) {
     world.advance(1);
-    const auto st = world.latest_stats();
-    det.push_back(1e3 * st.time_detection), sol.push_back(1e3 * st.time_solve), integ.push_back(1e3 * st.time_integration);
+    x.phases(world.latest_stats());
   }
-  r.step_ms = spread(ms).median;
-  r.detection_ms = spread(det).median, r.solve_ms = spread(sol).median, r.integration_ms = spread(integ).median;
-  r.iterations /= double(steps);
-  r.residual = spread(residuals).median;
-  r.steps = std::size_t(steps);
-  return r;
+  return x.medians(steps);
 }
 
 template <class Method>
@@ -126,22 +130,17 @@ Row time_cpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
   rbd::World<device::cpu, T, rbd::ConeFriction, Method> world(set, s);
   world.advance(2);
   world.set_phase_timing(true);
-  Row r;
-  std::vector<double> ms, residuals, det, sol, integ;
+  Samples x;
   for (long k = 0; k < steps; ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     world.advance(1);
-    ms.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    x.ms.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     const auto st = world.latest_stats();
-    account(r, st, residuals);
-    det.push_back(1e3 * st.time_detection), sol.push_back(1e3 * st.time_solve), integ.push_back(1e3 * st.time_integration);
+    x.accuracy(st);
+    x.phases(st);
   }
-  r.step_ms = spread(ms).median;
+  Row r = x.medians(steps);
   r.queued_ms = r.step_ms;  // the host backend runs as it queues
-  r.detection_ms = spread(det).median, r.solve_ms = spread(sol).median, r.integration_ms = spread(integ).median;
-  r.iterations /= double(steps);
-  r.residual = spread(residuals).median;
-  r.steps = std::size_t(steps);
   return r;
 }
 
@@ -166,8 +165,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--n") o.n = parse_list<std::size_t>(option_value(argc, argv, i));
-    else if (a == "--modes") o.modes = split(option_value(argc, argv, i));
-    else if (a == "--graphs") o.graphs = split(option_value(argc, argv, i));
+    else if (a == "--modes") o.modes = parse_words(option_value(argc, argv, i));
+    else if (a == "--graphs") o.graphs = parse_words(option_value(argc, argv, i));
     else if (a == "--settle") o.settle = std::stol(option_value(argc, argv, i));
     else if (a == "--steps") o.steps = std::max(1L, std::stol(option_value(argc, argv, i)));
     else if (a == "--cpu-steps") o.cpu_steps = std::max(1L, std::stol(option_value(argc, argv, i)));

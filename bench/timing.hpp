@@ -87,6 +87,15 @@ std::vector<N> parse_list(const std::string& s) {
   return out;
 }
 
+// A comma-separated list of words ("apgd,jacobi"); empty words are kept.
+inline std::vector<std::string> parse_words(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t a = 0;
+  for (std::size_t b; (b = s.find(',', a)) != std::string::npos; a = b + 1) out.push_back(s.substr(a, b - a));
+  out.push_back(s.substr(a));
+  return out;
+}
+
 // The value after option argv[i] (advances i); exits with a message if missing.
 inline std::string option_value(int argc, char** argv, int& i) {
   if (i + 1 >= argc) {

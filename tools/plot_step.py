@@ -22,6 +22,15 @@ def series(rows, key, value):
     return {k: sorted(v) for k, v in out.items()}
 
 
+def finish_axes(ax, xlabel, ylabel, title):
+    ax.set_xscale("log"), ax.set_yscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+
+
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("csv", nargs="+")
@@ -40,24 +49,15 @@ def main(argv):
     for name, pts in sorted(series(rows, label, "ms_step_median").items()):
         style = "--" if name.startswith("cpu") else (":" if name.endswith("on") else "-")
         left.plot([p[0] for p in pts], [p[1] for p in pts], style, marker="o", label=name)
-    left.set_xscale("log"), left.set_yscale("log")
-    left.set_xlabel("spheres (the shared pile of PILE.md, after it fell for a while)")
-    left.set_ylabel("ms per whole step (median)")
-    left.set_title("time per step")
-    left.grid(True, which="both", alpha=0.3)
-    left.legend(fontsize=7)
+    finish_axes(left, "spheres (the shared pile of PILE.md, after it fell for a while)",
+                "ms per whole step (median)", "time per step")
 
     gpu = [r for r in rows if r["backend"] == "gpu" and r["mode"] in ("jacobi10", "defaults")]
     for phase in ("ms_detection", "ms_solve"):
         for name, pts in sorted(series(gpu, label, phase).items()):
             right.plot([p[0] for p in pts], [p[1] for p in pts], "-" if phase == "ms_solve" else "--", marker="o",
                        label=f'{phase[3:]}: {name[4:]}')
-    right.set_xscale("log"), right.set_yscale("log")
-    right.set_xlabel("spheres")
-    right.set_ylabel("ms per step (median, CUDA events)")
-    right.set_title("GPU phases")
-    right.grid(True, which="both", alpha=0.3)
-    right.legend(fontsize=7)
+    finish_axes(right, "spheres", "ms per step (median, CUDA events)", "GPU phases")
     threads = rows[0].get("cpu_threads") or "thread count not recorded"
     fig.suptitle(f'gpusolve whole step on {rows[0]["gpu"]} (cpu rows: the host backend on its host, {threads})')
     fig.tight_layout()
