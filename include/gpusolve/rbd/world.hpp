@@ -98,42 +98,49 @@ class World {
   // The host side of a queued step; its figures arrive in pinned memory.
   struct Slot {
     StepStats<T> stats;
-    detail::StreamMarks<Device, 5> marks;  // start, detected, solved, moved, figures copied
+    detail::StreamMarks<Device, 5> marks;  // start, detected, solved, moved, figures written
     bool timed = false;
   };
 
+  // The slot of this step still holds the step before the previous one, which
+  // stays readable (previous_stats) until this step has been queued in full.
   void queue_step() {
     auto& bodies = manager_.device();
     const SolverSettings<T>& s = settings_;
     const math::Vector3<T> g(s.gravity[0], s.gravity[1], s.gravity[2]);
-    Slot& slot = slots_[steps_ % 2];  // held the step before the previous one
-    if (timing_) slot.marks.mark(0, stream_);
-    detection_.set_graphs(s.graphs);
+    const std::size_t k = steps_ % 2;
+    Slot& slot = slots_[k];
+    StepStats<T> stats;
     try {
+      if (timing_) slot.marks.mark(0, stream_);
+      detection_.set_graphs(s.graphs);
       detection_.detect(bodies, contacts_, s.margin, s.friction, stream_);
-    } catch (const NonFiniteStateError& e) {  // nothing was moved: say which step it stopped
-      slot.timed = false;
+      if (timing_) slot.marks.mark(1, stream_);
+      constexpr bool own_integration = !integrates<solver_type>::value;  // else the solver moves the bodies
+      if (own_integration) apply_forces(bodies, s.dt, g, stream_);  // the LCP sees v + dt M^-1 f_ext (thesis Eq. 6)
+      const bool warm = s.warm_start > 0;
+      if (warm) warm_.carry(contacts_.view(), s.warm_start, stream_);
+      stats.solver = solver_.solve(bodies, contacts_, s, stream_, warm);
+      if (warm)
+        warm_.remember(contacts_.view(), stream_);
+      else
+        warm_.forget();
+      if (timing_) slot.marks.mark(2, stream_);
+      if (own_integration) move(bodies, s.dt, stream_);
+      if (timing_) slot.marks.mark(3, stream_);
+      if (figures_.size() == 0) figures_ = Figures(2);
+      step_figures_into(algorithms_, bodies.view(), contacts_.view(), g, figures_.data() + k, stream_);
+      slot.marks.mark(4, stream_);
+    } catch (const NonFiniteStateError& e) {  // found by detection, nothing moved: say which step it stopped
+      slot.timed = false;                      // its marks were overwritten
       throw NonFiniteStateError(e.body(), e.field(), steps_);
+    } catch (...) {
+      slot.timed = false;
+      throw;
     }
-    current_ = steps_ % 2;
-    slot.stats = StepStats<T>{};
+    slot.stats = stats;
     slot.timed = timing_;
-    if (timing_) slot.marks.mark(1, stream_);
-    constexpr bool own_integration = !integrates<solver_type>::value;  // else the solver moves the bodies
-    if (own_integration) apply_forces(bodies, s.dt, g, stream_);  // the LCP sees v + dt M^-1 f_ext (thesis Eq. 6)
-    const bool warm = s.warm_start > 0;
-    if (warm) warm_.carry(contacts_.view(), s.warm_start, stream_);
-    slot.stats.solver = solver_.solve(bodies, contacts_, s, stream_, warm);
-    if (warm)
-      warm_.remember(contacts_.view(), stream_);
-    else
-      warm_.forget();
-    if (timing_) slot.marks.mark(2, stream_);
-    if (own_integration) move(bodies, s.dt, stream_);
-    if (timing_) slot.marks.mark(3, stream_);
-    if (figures_.size() == 0) figures_ = Figures(2);
-    step_figures_into(algorithms_, bodies.view(), contacts_.view(), g, figures_.data() + current_, stream_);
-    slot.marks.mark(4, stream_);
+    current_ = k;
     ++steps_;
   }
 
