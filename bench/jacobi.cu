@@ -1,7 +1,7 @@
 // Time per projected-Jacobi iteration on the GPU, per accumulation strategy and contact model.
 //
 // Run: gpusolve_bench_jacobi [--contacts 26000,1000000] [--repeats 20] [--iters N] [--warmup 2] [--omega 0.3]
-//                             [--csv FILE]
+//                             [--persistent on|off] [--csv FILE]
 //
 // For each target contact count a settled-looking pile (bench/pile.hpp) is built
 // and collision detection runs once. Then, per model and strategy, each repeat
@@ -16,6 +16,8 @@
 // graph         = the same iteration's kernels captured N times into one CUDA
 //                 graph once and replayed (SolverSettings::graphs makes solve()
 //                 capture and update one per solve, which costs more than it saves).
+// --persistent: SolverSettings::persistent for solve(): on (the default) runs
+// the iterations between checks as one cooperative kernel, off launches them.
 // The tolerance is the smallest positive float and divergence detection is
 // off, so every solve runs its full count; the program checks that it did.
 // omega defaults to 0.3: on this close-packed pile (12 contacts per sphere) the
@@ -51,6 +53,7 @@ struct Options {
   int repeats = 20, warmup = 2;
   std::size_t iters = 0;  // 0: 100 up to 200k contacts, 40 beyond
   double omega = 0.3;
+  bool persistent = true;
   std::string csv;
 };
 
@@ -115,6 +118,7 @@ Row bench_strategy(rbd::Bodies<Dev, T>& bodies, rbd::Contacts<Dev, T, Model>& co
     s.omega = T(opt.omega);
     s.divergence_checks = 0;
     s.max_retries = 0;  // time the iterations, not restarts at a lower omega
+    s.persistent = opt.persistent;
     s.max_iterations = n;
     s.check_every = check_every;
     restore();
@@ -239,9 +243,10 @@ void bench_model(rbd::BodySet<T>& set, const Options& opt, std::size_t target, s
   if (!csv) return;
   for (const Row& r : rows)
     std::fprintf(csv,
-                 "\"%s\",%zu,%zu,%zu,%s,%s,%zu,%zu,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.0f,%.6g,"
+                 "\"%s\",%zu,%zu,%zu,%s,%s,%s,%zu,%zu,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.0f,%.6g,"
                  "%.3g\n",
-                 gpu.c_str(), nc, target, set.size() - 1, r.model.c_str(), r.strategy.c_str(), r.launches, iters,
+                 gpu.c_str(), nc, target, set.size() - 1, r.model.c_str(), r.strategy.c_str(),
+                 opt.persistent ? "on" : "off", r.launches, iters,
                  opt.repeats, r.iter_us.median, r.iter_us.p10, r.iter_us.p90, r.iter_us.min, r.iter_us.max,
                  r.graph_us.median, r.graph_us.p10, r.graph_us.p90, r.check_us.median, r.setup_us.median,
                  nc / (r.iter_us.median * 1e-6), r.bytes, r.residual, r.graph_diff);
@@ -261,31 +266,39 @@ Options parse(int argc, char** argv) {
       o.iters = std::size_t(std::max(1, std::atoi(option_value(argc, argv, i).c_str())));
     else if (a == "--omega")
       o.omega = std::atof(option_value(argc, argv, i).c_str());
-    else if (a == "--csv")
+    else if (a == "--persistent") {
+      const std::string v = option_value(argc, argv, i);
+      if (v != "on" && v != "off") throw InvalidArgumentError("bench: --persistent takes on or off");
+      o.persistent = v == "on";
+    } else if (a == "--csv")
       o.csv = option_value(argc, argv, i);
     else
-      usage_exit(argv[0], "[--contacts N,N...] [--repeats R] [--warmup W] [--iters N] [--omega W] [--csv FILE]", a);
+      usage_exit(argv[0],
+                 "[--contacts N,N...] [--repeats R] [--warmup W] [--iters N] [--omega W] [--persistent on|off] "
+                 "[--csv FILE]",
+                 a);
   }
   return o;
 }
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options opt = parse(argc, argv);
   try {
+    const Options opt = parse(argc, argv);
     const std::string gpu = print_banner("gpusolve bench: projected Jacobi iteration (float)");
     std::printf(
-        "JacobiSolver::solve launches each iteration's kernels (with SolverSettings::graphs, the default here\n"
-        "off, it captures the iterations between checks into a graph per solve); the host waits for the GPU\n"
-        "only at a check. us/iter: solve() with one check; graph: the same kernels from a graph captured once\n"
+        "JacobiSolver::solve runs the iterations between two checks as one cooperative kernel (persistent on)\n"
+        "or launches each iteration's kernels (off); the host waits for the GPU only at a check.\n"
+        "us/iter: solve() with one check; graph: the launches' kernels from a graph captured once\n"
         "and replayed (no capture cost); us/check: one residual check with its host sync; L/i: launches/iteration;\n"
         "GB/s: modelled bytes (see source) / time; |dv|: max velocity difference graph vs solve() (0: same work).\n");
     std::FILE* csv = open_csv(
         opt.csv,
-        "gpu,contacts,target,spheres,model,strategy,launches_per_iter,iters,repeats,us_per_iter_median,"
+        "gpu,contacts,target,spheres,model,strategy,persistent,launches_per_iter,iters,repeats,us_per_iter_median,"
         "us_per_iter_p10,us_per_iter_p90,us_per_iter_min,us_per_iter_max,graph_us_per_iter_median,"
         "graph_us_per_iter_p10,graph_us_per_iter_p90,us_per_check_median,setup_us_median,contacts_per_s,"
         "modelled_bytes_per_iter,final_residual,graph_vs_solve_max_dv");
+    std::printf("solve(): persistent %s\n", opt.persistent ? "on" : "off");
     cudaStream_t stream;
     GPUSOLVE_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
     for (std::size_t target : opt.contacts) {

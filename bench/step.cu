@@ -1,7 +1,7 @@
 // The whole time step, per phase and in total, on the GPU and the CPU backend.
 //
 // Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance]
-//                          [--graphs on,off] [--settle 900] [--steps 100] [--cpu-steps 20]
+//                          [--loop persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
 //                          [--cpu-max 1000000] [--csv FILE]
 //
 // For each N the shared pile (bench/shared_pile.hpp, ../shared/bench/PILE.md)
@@ -10,8 +10,11 @@
 //   jacobi10:  projected Jacobi (gather), exactly 10 iterations per step, one check;
 //   defaults:  World<device::gpu> with SolverSettings{} (APGD, 50 iterations);
 //   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500.
-// --graphs: SolverSettings::graphs on (detection and each run of iterations
-// between checks replayed from CUDA graphs) and/or off (the default: launch by launch).
+// --loop: how the GPU runs the solver's iterations between two residual checks:
+//   persistent  one cooperative kernel (SolverSettings::persistent, the default);
+//   launches    a kernel launch per phase (persistent off, graphs off);
+//   graphs      the launches captured into CUDA graphs, and detection too
+//               (persistent off, graphs on).
 // GPU, after 20 warm-up steps:
 //   step     median of CUDA-event times around each advance(1): what a step loop pays;
 //   queued   advance(steps) timed as one: steps queued back to back, divided by steps;
@@ -49,7 +52,7 @@ using T = float;
 struct Options {
   std::vector<std::size_t> n{1000, 10000, 100000, 1000000};
   std::vector<std::string> modes{"jacobi10", "defaults", "tolerance"};
-  std::vector<std::string> graphs{"off"};
+  std::vector<std::string> loops{"persistent"};
   long settle = 900, steps = 100, cpu_steps = 20;
   std::size_t cpu_max = 1000000;
   std::string csv;
@@ -61,9 +64,12 @@ struct Row {
   std::size_t contacts = 0, steps = 0;
 };
 
-SolverSettings<T> settings_for(const std::string& mode, bool graphs) {
+SolverSettings<T> settings_for(const std::string& mode, const std::string& loop) {
   SolverSettings<T> s;
-  s.graphs = graphs;
+  if (loop != "persistent" && loop != "launches" && loop != "graphs")
+    throw InvalidArgumentError("bench: unknown loop '" + loop + "' (persistent, launches, graphs)");
+  s.persistent = loop == "persistent";
+  s.graphs = loop == "graphs";
   s.friction = T(0.5);  // PILE.md
   if (mode == "jacobi10") {
     s.max_iterations = 10, s.check_every = 10;
@@ -149,8 +155,8 @@ Row time_backend(bool gpu, const rbd::BodySet<T>& set, const SolverSettings<T>& 
   return gpu ? time_gpu<Method>(set, s, steps) : time_cpu<Method>(set, s, steps);
 }
 
-Row time_mode(bool gpu, const std::string& mode, bool graphs, const rbd::BodySet<T>& set, long steps) {
-  const SolverSettings<T> s = settings_for(mode, graphs);
+Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const rbd::BodySet<T>& set, long steps) {
+  const SolverSettings<T> s = settings_for(mode, loop);
   if (mode == "jacobi10") return time_backend<rbd::Jacobi<rbd::Gather>>(gpu, set, s, steps);
   return time_backend<rbd::AcceleratedJacobi<rbd::Gather>>(gpu, set, s, steps);
 }
@@ -160,13 +166,13 @@ Row time_mode(bool gpu, const std::string& mode, bool graphs, const rbd::BodySet
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--graphs on,off] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
+      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--loop persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
       "[--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--n") o.n = parse_list<std::size_t>(option_value(argc, argv, i));
     else if (a == "--modes") o.modes = parse_words(option_value(argc, argv, i));
-    else if (a == "--graphs") o.graphs = parse_words(option_value(argc, argv, i));
+    else if (a == "--loop") o.loops = parse_words(option_value(argc, argv, i));
     else if (a == "--settle") o.settle = std::stol(option_value(argc, argv, i));
     else if (a == "--steps") o.steps = std::max(1L, std::stol(option_value(argc, argv, i)));
     else if (a == "--cpu-steps") o.cpu_steps = std::max(1L, std::stol(option_value(argc, argv, i)));
@@ -183,7 +189,7 @@ int main(int argc, char** argv) {
 #endif
     std::printf("CPU backend: %d thread(s)\n", cpu_threads);
     std::FILE* csv = open_csv(o.csv,
-                              "backend,n,mode,graphs,contacts,steps,ms_step_median,ms_step_queued,ms_detection,ms_solve,"
+                              "backend,n,mode,loop,contacts,steps,ms_step_median,ms_step_queued,ms_detection,ms_solve,"
                               "ms_integration,iterations_mean,max_penetration,residual_median,cpu_threads,gpu");
     for (std::size_t n : o.n) {
       rbd::BodySet<T> set = shared_pile<T>(n);
@@ -201,14 +207,13 @@ int main(int argc, char** argv) {
       for (const bool gpu : {true, false}) {
         if (!gpu && n > o.cpu_max) continue;
         for (const auto& mode : o.modes)
-          for (const auto& g : o.graphs) {
-            if (g != "on" && g != "off") throw InvalidArgumentError("bench: --graphs takes on and/or off");
-            if (!gpu && &g != &o.graphs.front()) continue;  // the CPU backend has no graphs: one row
+          for (const auto& g : o.loops) {
+            if (!gpu && &g != &o.loops.front()) continue;  // the CPU backend has one loop: one row
             const long steps = gpu ? o.steps : o.cpu_steps;
-            std::printf("... %s n=%zu %s graphs %s, %ld steps\n", gpu ? "gpu" : "cpu", n, mode.c_str(),
+            std::printf("... %s n=%zu %s loop %s, %ld steps\n", gpu ? "gpu" : "cpu", n, mode.c_str(),
                         gpu ? g.c_str() : "-", steps);
             std::fflush(stdout);
-            const Row r = time_mode(gpu, mode, g == "on", set, steps);
+            const Row r = time_mode(gpu, mode, g, set, steps);
             std::printf("    %s %s %s: %zu contacts: step %.3f ms (queued %.3f ms), detection %.3f, solve %.3f, "
                         "integration %.3f ms; %.1f iterations, penetration %.4f%%, residual %.3g\n",
                         gpu ? "gpu" : "cpu", mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.step_ms, r.queued_ms,

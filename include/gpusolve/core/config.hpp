@@ -13,6 +13,15 @@
 #define GPUSOLVE_HAS_NVCC 0
 #endif
 
+// Put before a GPUSOLVE_HD function template that calls, for some of its
+// template arguments, a host-only function (a kernel launch): nvcc then checks
+// each instantiation where it is used instead of warning about the template.
+#if defined(__CUDACC__)
+#define GPUSOLVE_EXEC_CHECK_DISABLE _Pragma("nv_exec_check_disable")
+#else
+#define GPUSOLVE_EXEC_CHECK_DISABLE
+#endif
+
 // The CUDA runtime API (memory, streams, events) is usable from plain C++ when
 // its header is on the include path; kernels need nvcc (GPUSOLVE_HAS_NVCC).
 // Define GPUSOLVE_NO_CUDART to build a strictly CPU-only program.

@@ -12,8 +12,9 @@
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/contacts/contact_grouping.hpp"
-#include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/detail/launch_exec.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/solvers/contact_kernels.hpp"
 
 namespace gpusolve::rbd {
 
@@ -31,7 +32,11 @@ struct Gather {};
 // Accumulator<Strategy, Device, T>: prepare() once per step after the contacts
 // are known, sink() for ResolveCollisions (add(entry, body, dv, dw)), apply()
 // adds the iteration's sums to the body velocities (UpdateVelocities) and
-// leaves the accumulator ready for the next iteration.
+// leaves the accumulator ready for the next iteration. program(b) is apply()
+// as phases of an iteration program (detail/persistent_loop.hpp): apply() runs
+// it with a launch per phase, a persistent kernel runs it between barriers. Its
+// last phase is left open (no sync at the end): the caller may add work that
+// does not touch the velocities to it.
 template <class Strategy, class Device, class T>
 class Accumulator;
 
@@ -84,6 +89,25 @@ struct CacheToBodies {
   }
 };
 
+// The apply() programs of the three strategies.
+template <class BV, class T, bool Sum>
+struct CacheApply {
+  ReduceVelocityUpdates<T> pass;  // pass.o is set per pass
+  std::size_t passes, entries, bodies;
+  CacheToBodies<BV, T, Sum> to_bodies;
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e) const {
+    for (std::size_t s = 1; s <= passes; ++s) {
+      ReduceVelocityUpdates<T> r = pass;
+      r.o = std::uint32_t(1) << (s - 1);
+      e.each(entries, r);
+      e.sync();
+    }
+    e.each(bodies, to_bodies);
+  }
+};
+
 template <class T>
 struct AtomicSink {
   VectorD2View<T> dv, dw;  // bodies x 3
@@ -107,6 +131,16 @@ struct AtomicToBodies {
   }
 };
 
+template <class BV, class T>
+struct AtomicApply {
+  AtomicToBodies<BV, T> to_bodies;
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e) const {
+    e.each(to_bodies.b.size(), to_bodies);
+  }
+};
+
 // The update cache shared by UpdateCache and Gather: one slot per contact side.
 template <class Device, class T>
 class CacheStore {
@@ -121,8 +155,10 @@ class CacheStore {
   CacheSink<T> sink() { return CacheSink<T>{dv_.view(), dw_.view(), grouping_.view().slot}; }
  protected:
   template <bool Sum, class BV>
-  void to_bodies(const BV& b, stream_t stream) {
-    launch(Device{}, b.size(), CacheToBodies<BV, T, Sum>{b, dv_.view(), dw_.view(), grouping_.view().start}, stream);
+  CacheApply<BV, T, Sum> cache_program(const BV& b, std::size_t passes) {
+    const auto g = grouping_.view();
+    return {{dv_.view(), dw_.view(), g.rank, 0}, passes, entries_, b.size(),
+            {b, dv_.view(), dw_.view(), g.start}};
   }
   ContactGrouping<Device> grouping_;
   Vec3Store<Device, T> dv_, dw_;
@@ -136,13 +172,12 @@ class Accumulator<UpdateCache, Device, T> : public detail::CacheStore<Device, T>
  public:
   std::size_t passes() { return this->grouping_.passes(); }  // waits for the grouping once per step
   template <class BV>
+  detail::CacheApply<BV, T, false> program(const BV& b) {
+    return this->template cache_program<false>(b, passes());
+  }
+  template <class BV>
   void apply(const BV& b, stream_t stream = stream_t{}) {
-    const auto rank = this->grouping_.view().rank;
-    for (std::size_t s = 1; s <= this->passes(); ++s)
-      launch(Device{}, this->entries_,
-             detail::ReduceVelocityUpdates<T>{this->dv_.view(), this->dw_.view(), rank, std::uint32_t(1) << (s - 1)},
-             stream);
-    this->template to_bodies<false>(b, stream);
+    program(b)(detail::LaunchExec<Device, T>{stream});
   }
 };
 
@@ -151,8 +186,12 @@ class Accumulator<Gather, Device, T> : public detail::CacheStore<Device, T> {
  public:
   std::size_t passes() const { return 0; }
   template <class BV>
+  detail::CacheApply<BV, T, true> program(const BV& b) {
+    return this->template cache_program<true>(b, 0);
+  }
+  template <class BV>
   void apply(const BV& b, stream_t stream = stream_t{}) {
-    this->template to_bodies<true>(b, stream);
+    program(b)(detail::LaunchExec<Device, T>{stream});
   }
 };
 
@@ -166,8 +205,12 @@ class Accumulator<Atomic, Device, T> {
   }
   detail::AtomicSink<T> sink() { return detail::AtomicSink<T>{dv_.view(), dw_.view()}; }
   template <class BV>
+  detail::AtomicApply<BV, T> program(const BV& b) {
+    return {{b, dv_.view(), dw_.view()}};
+  }
+  template <class BV>
   void apply(const BV& b, stream_t stream = stream_t{}) {
-    launch(Device{}, b.size(), detail::AtomicToBodies<BV, T>{b, dv_.view(), dw_.view()}, stream);
+    program(b)(detail::LaunchExec<Device, T>{stream});
   }
   std::size_t passes() const { return 0; }
 

@@ -16,6 +16,8 @@
 #include "gpusolve/rbd/solvers/convergence.hpp"
 #include "gpusolve/rbd/solvers/momentum.hpp"
 #include "gpusolve/rbd/detail/graph_replay.hpp"
+#include "gpusolve/rbd/detail/launch_exec.hpp"
+#include "gpusolve/rbd/detail/persistent_loop.hpp"
 #include "gpusolve/rbd/detail/reduce.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
@@ -24,6 +26,36 @@
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {
+
+namespace detail {
+
+// One iteration of the Jacobi family as an iteration program
+// (persistent_loop.hpp): every contact's projected update (`measuring` in the
+// last iteration of a run, which records the residual), their sum per body
+// (Apply, the accumulation strategy), then unless it is the last the momentum
+// step (Step), its first phase joined to Apply's last.
+template <class Contact, class Apply, class Step>
+struct JacobiIteration {
+  Contact plain, measuring;
+  Apply apply;
+  Step momentum;
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e, bool last) const {
+    if (last)
+      e.each(plain.phi.c.size(), measuring);
+    else
+      e.each(plain.phi.c.size(), plain);
+    e.sync();
+    apply(e);
+    if (last)
+      e.sync();
+    else
+      momentum(e);
+  }
+};
+
+}  // namespace detail
 
 // Solves the contact LCP of one time step for the bodies' velocities. On entry
 // the velocities include the step's external forces (v + dt M^-1 f); on exit
@@ -74,21 +106,24 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
         contacts.x.fill(T(0), stream);
       }
       momentum_.begin(b, c, rhs, stream);
+      using Contact = JacobiContact<Model, BV, CV, Sink, T>;
+      const Contact plain{{b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, acc_.sink(), omega, false, residual}};
+      Contact measuring = plain;
+      measuring.resolve.measure = true;
+      const detail::JacobiIteration<Contact, decltype(acc_.program(b)), decltype(momentum_.program(b, c, rhs))>
+          iteration{plain, measuring, acc_.program(b), momentum_.program(b, c, rhs)};
+      const bool persistent = s.persistent && persistent_.available();
       ConvergenceMonitor<T> monitor(s, st);
       // Iterations `first` ... `last`, the last one measuring the residual.
       auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
-        for (std::size_t it = first; it <= last; ++it) {
-          launch(dev, nc,
-                 JacobiContact<Model, BV, CV, Sink, T>{{b, c, rhs, T(1) / s.dt, s.correction},
-                                                       {b, c, rhs, acc_.sink(), omega, it == last, residual}},
-                 q);
-          acc_.apply(b, q);
-          if (it != last) momentum_.after_iteration(b, c, rhs, q);
-        }
+        const detail::LaunchExec<Device, T> e{q, momentum_.summer()};
+        for (std::size_t it = first; it <= last; ++it) iteration(e, it == last);
       };
       for (std::size_t first = 1;;) {
         const std::size_t last = monitor.next_check(first);
-        if (s.graphs)
+        if (persistent)
+          persistent_.run(iteration, last - first + 1, nc > b.size() ? nc : b.size(), stream);
+        else if (s.graphs)
           graph_.run([&](stream_t q) { iterations(first, last, q); }, stream);
         else
           iterations(first, last, stream);
@@ -104,7 +139,8 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
  private:
   Accumulator<Strategy, Device, T> acc_;
   Momentum<MomentumTag, Device, T> momentum_;
-  detail::GraphReplay<Device> graph_;  // SolverSettings::graphs
+  detail::GraphReplay<Device> graph_;           // SolverSettings::graphs
+  detail::PersistentLoop<Device, T> persistent_;  // SolverSettings::persistent
 };
 
 // The method tag of projected Jacobi (a model of the Solver concept, solver.hpp).

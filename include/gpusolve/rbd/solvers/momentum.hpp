@@ -9,6 +9,7 @@
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
+#include "gpusolve/rbd/detail/launch_exec.hpp"
 #include "gpusolve/rbd/detail/reduce.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 
@@ -18,10 +19,26 @@ namespace gpusolve::rbd {
 struct NoMomentum {};
 struct Nesterov {};
 
+namespace detail {
+
+// The after_iteration() program of NoMomentum: closes the phase it joins.
+struct NoStep {
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e) const {
+    e.sync();
+  }
+};
+
+}  // namespace detail
+
 // Momentum<Tag, Device, T>: begin() when an attempt's start impulses and
 // velocities agree (sizes all its storage); after_iteration() once per iteration that goes on, with
 // contacts.x and the velocities at the projected iterate and rhs the gradient
-// it was computed from.
+// it was computed from. program(b, c, rhs) is after_iteration() as phases of an
+// iteration program (detail/persistent_loop.hpp), valid after begin(): its
+// first phase joins the accumulator's last one (it reads only impulses), its
+// last ends with a sync; summer() is the SumInto a LaunchExec running it needs.
 template <class Tag, class Device, class T>
 class Momentum {
  public:
@@ -29,6 +46,11 @@ class Momentum {
   void begin(const BV&, const CV&, VectorD2View<T>, stream_t) {}
   template <class BV, class CV>
   void after_iteration(const BV&, const CV&, VectorD2View<T>, stream_t) {}
+  template <class BV, class CV>
+  detail::NoStep program(const BV&, const CV&, VectorD2View<T>) {
+    return {};
+  }
+  SumInto<Device, T>* summer() { return nullptr; }
 };
 
 namespace detail {
@@ -92,6 +114,25 @@ struct Extrapolate {
   }
 };
 
+// One momentum step: the restart test's sum, theta and beta (the one thread
+// that reads the sum at once), the extrapolation.
+template <class BV, class CV, class T>
+struct NesterovStep {
+  StepAlongGradient<CV, T> gradient;
+  UpdateMomentum<T> update;
+  Extrapolate<BV, CV, T> extrapolate;
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e) const {
+    e.sum(extrapolate.c.size(), gradient, update.state + 2);
+    e.each(1, update);
+    e.sync();
+    const std::size_t nc = extrapolate.c.size(), nb = extrapolate.b.size();
+    e.each(nc > nb ? nc : nb, extrapolate);
+    e.sync();
+  }
+};
+
 // Keeps the start of an attempt as x_prev and sets theta = 1 (Extrapolate with beta 0).
 template <class T>
 struct ResetMomentum {
@@ -115,22 +156,20 @@ class Momentum<Nesterov, Device, T> {
     // Sized here, so that after_iteration allocates nothing (it may be captured into a graph).
     sum_.reserve(c.size(), detail::StepAlongGradient<CV, T>{c, rhs, px_.view()}, state_.data() + 2);
     launch(Device{}, 1, detail::ResetMomentum<T>{state_.data()}, stream);
-    extrapolate(b, c, stream);  // beta 0: records the start as x_prev
+    const std::size_t n = c.size() > b.size() ? c.size() : b.size();
+    launch(Device{}, n, program(b, c, rhs).extrapolate, stream);  // beta 0: records the start as x_prev
   }
   template <class BV, class CV>
   void after_iteration(const BV& b, const CV& c, VectorD2View<T> rhs, stream_t stream) {
-    sum_(c.size(), detail::StepAlongGradient<CV, T>{c, rhs, px_.view()}, state_.data() + 2, stream);
-    launch(Device{}, 1, detail::UpdateMomentum<T>{state_.data()}, stream);
-    extrapolate(b, c, stream);
+    program(b, c, rhs)(detail::LaunchExec<Device, T>{stream, &sum_});
   }
+  template <class BV, class CV>
+  detail::NesterovStep<BV, CV, T> program(const BV& b, const CV& c, VectorD2View<T> rhs) {
+    return {{c, rhs, px_.view()}, {state_.data()}, {b, c, px_.view(), pv_.view(), pw_.view(), state_.data()}};
+  }
+  SumInto<Device, T>* summer() { return &sum_; }
 
  private:
-  template <class BV, class CV>
-  void extrapolate(const BV& b, const CV& c, stream_t stream) {
-    const std::size_t n = c.size() > b.size() ? c.size() : b.size();
-    launch(Device{}, n, detail::Extrapolate<BV, CV, T>{b, c, px_.view(), pv_.view(), pw_.view(), state_.data()},
-           stream);
-  }
   VectorD2<T, device_is<Device>> px_, pv_, pw_;
   VectorD1<T, device_is<Device>> state_;
   SumInto<Device, T> sum_;

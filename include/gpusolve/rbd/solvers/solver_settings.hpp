@@ -62,6 +62,11 @@ struct SolverSettings {
   // on an H200 (bench/step.cu, README: 1.90 against 2.31 ms per step at the
   // defaults for 10 000 spheres). The CPU ignores it.
   bool graphs = false;
+  // GPU: the Jacobi-family solvers run each run of iterations between two
+  // residual checks as one cooperative kernel, the phases of an iteration
+  // separated by grid-wide barriers (detail/persistent_loop.hpp), the same
+  // functors as the launches; it takes precedence over `graphs`. The CPU ignores it.
+  bool persistent = true;
 
   // Throws InvalidArgumentError naming the first offending field.
   void validate() const {

@@ -1,0 +1,124 @@
+// PersistentLoop: runs many iterations of a solver in one cooperative kernel,
+// a grid-wide barrier between their phases instead of a kernel launch each.
+//
+// An iteration program is a __host__ __device__ callable program(e, last) that
+// queues its phases through an executor e: e.each(n, f) runs f(i) for i in
+// [0, n); e.sync() orders everything before it before everything after it;
+// e.sum(n, f, out) writes the sum of f(i) to *out, which index 0 of the next
+// e.each reads at once and every index after the next e.sync() (the sum costs
+// one barrier, not two). It ends with e.sync(). The same program runs under two executors:
+// LaunchExec (launch_exec.hpp, a launch per phase, both backends) and GridExec
+// here (phases of one kernel, GPU). A phase is the same functor either way.
+#pragma once
+
+#include <cstddef>
+#include <type_traits>
+
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/core/device.hpp"
+#include "gpusolve/core/error.hpp"
+#include "gpusolve/core/launch.hpp"
+
+#if GPUSOLVE_HAS_NVCC
+#include <cooperative_groups.h>
+#include <cub/block/block_reduce.cuh>
+#endif
+
+namespace gpusolve::rbd::detail {
+
+inline constexpr unsigned persistent_block_size = 256;
+
+#if GPUSOLVE_HAS_NVCC
+// The executor inside the cooperative kernel. Its sum is deterministic: each
+// block reduces its strided share, block 0 adds the blocks' partials in order.
+template <class T>
+struct GridExec {
+  T* partials;  // one per block
+
+  template <class F>
+  __device__ void each(std::size_t n, const F& f) const {
+    const std::size_t stride = static_cast<std::size_t>(blockDim.x) * gridDim.x;
+    for (std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride) f(i);
+  }
+  __device__ void sync() const { cooperative_groups::this_grid().sync(); }
+  template <class F>
+  __device__ void sum(std::size_t n, const F& f, T* out) const {
+    using Reduce = cub::BlockReduce<T, persistent_block_size>;
+    __shared__ typename Reduce::TempStorage temp;
+    T s = T(0);
+    each(n, [&](std::size_t i) { s += f(i); });
+    const T block = Reduce(temp).Sum(s);
+    if (threadIdx.x == 0) partials[blockIdx.x] = block;
+    sync();
+    if (blockIdx.x == 0) {  // its thread 0 is index 0 of the next each()
+      T t = T(0);
+      for (unsigned k = threadIdx.x; k < gridDim.x; k += blockDim.x) t += partials[k];
+      const T total = Reduce(temp).Sum(t);
+      if (threadIdx.x == 0) *out = total;
+    }
+  }
+};
+
+template <class Program, class T>
+__global__ void __launch_bounds__(persistent_block_size)
+    persistent_iterations_kernel(Program program, std::size_t count, T* partials) {
+  const GridExec<T> e{partials};
+  for (std::size_t k = 1; k <= count; ++k) program(e, k == count);
+}
+#endif
+
+// run(program, count, width, stream) queues `count` iterations of `program`
+// (the last one called with last = true) as one cooperative kernel of at most
+// one block per `persistent_block_size` indices of `width` (the longest phase)
+// and no more blocks than the GPU holds at once. GPU only: available() says
+// whether it can run here (nvcc and a device with cooperative launch).
+template <class Device, class T>
+class PersistentLoop {
+ public:
+  static bool available() {
+    if constexpr (std::is_same_v<Device, device::gpu> && GPUSOLVE_HAS_NVCC) {
+      static const bool ok = [] {
+        int dev = 0, coop = 0;
+        GPUSOLVE_CUDA_CHECK(cudaGetDevice(&dev));
+        GPUSOLVE_CUDA_CHECK(cudaDeviceGetAttribute(&coop, cudaDevAttrCooperativeLaunch, dev));
+        return coop != 0;
+      }();
+      return ok;
+    } else {
+      return false;
+    }
+  }
+
+  template <class Program>
+  void run(const Program& program, std::size_t count, std::size_t width, stream_t stream) {
+#if GPUSOLVE_HAS_NVCC
+    if constexpr (std::is_same_v<Device, device::gpu>) {
+      auto* kernel = &persistent_iterations_kernel<Program, T>;
+      static const int per_sm = [kernel] {
+        int blocks = 0;
+        GPUSOLVE_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks, kernel, persistent_block_size, 0));
+        return blocks;
+      }();
+      if (per_sm == 0)
+        throw UnsupportedError("gpusolve: the persistent solver kernel does not fit on one multiprocessor");
+      const std::size_t wanted = (width + persistent_block_size - 1) / persistent_block_size;
+      const std::size_t resident = static_cast<std::size_t>(per_sm) * static_cast<std::size_t>(gpusolve::detail::sm_count());
+      const std::size_t blocks = wanted == 0 ? 1 : (wanted < resident ? wanted : resident);
+      if (partials_.size_x() < blocks) partials_.resize(blocks);
+      T* partials = partials_.data();
+      void* args[] = {const_cast<Program*>(&program), &count, &partials};
+      GPUSOLVE_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(kernel), dim3(unsigned(blocks)),
+                                                      dim3(persistent_block_size), args, 0, stream));
+      return;
+    }
+#endif
+    (void)program, (void)count, (void)width, (void)stream;
+    throw UnsupportedError("gpusolve: the persistent solver kernel needs device::gpu and nvcc");
+  }
+
+ private:
+  VectorD1<T, device_is<Device>> partials_;
+};
+
+}  // namespace gpusolve::rbd::detail

@@ -1,0 +1,85 @@
+// The persistent solver kernel (detail/persistent_loop.hpp) against the same
+// iterations launched one kernel at a time: the same functors in the same
+// order, so Jacobi's two deterministic strategies agree bit for bit; APGD's
+// momentum sums its restart test in another order, so it agrees to rounding.
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "catch_compat.hpp"
+#include "../host/test_rbd_scenes.hpp"
+
+using namespace rbd_test;
+
+namespace {
+
+template <class Strategy, class MomentumTag>
+std::pair<std::vector<float>, SolverStats<float>> solve_once(bool persistent, std::size_t check_every) {
+  auto set = pile<float>(6, 5);
+  BodyManager<device::gpu, float> m(set);
+  m.syncDeviceFull();
+  Contacts<device::gpu, float, ConeFriction> c;
+  SolverSettings<float> s;
+  s.dt = 0.01f, s.margin = 0.02f, s.friction = 0.4f;
+  s.tolerance = 1e-6f, s.max_iterations = 120, s.check_every = check_every;
+  s.persistent = persistent;
+  prepare_solve(m.device(), c, s);
+  const auto stats = JacobiSolver<device::gpu, float, ConeFriction, Strategy, MomentumTag>().solve(m.device(), c, s);
+  Bodies<device::cpu, float> host;
+  host = m.device();
+  return {velocities(host), stats};
+}
+
+std::vector<float> positions(const BodySet<float>& set) {
+  std::vector<float> out;
+  for (std::size_t i = 0; i < set.size(); ++i)
+    for (int k = 0; k < 3; ++k) out.push_back(set[i].pos[k]);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("GPU persistent Jacobi kernel equals the launches bit for bit", "[rbd_persistent][gpu]") {
+  // check_every 120: one kernel per solve; 7: a kernel per run between checks, the last one short.
+  for (std::size_t every : {std::size_t(120), std::size_t(7)}) {
+    INFO("check_every " << every);
+    const auto gather = solve_once<Gather, NoMomentum>(true, every);
+    const auto gather_launched = solve_once<Gather, NoMomentum>(false, every);
+    REQUIRE(gather.second.contacts > 300);
+    CHECK(gather.second.iterations == 120);
+    CHECK(gather.first == gather_launched.first);
+    CHECK(gather.second.residuals == gather_launched.second.residuals);
+    const auto cache = solve_once<UpdateCache, NoMomentum>(true, every);
+    CHECK(cache.second.reduction_passes > 1);
+    CHECK(cache.first == solve_once<UpdateCache, NoMomentum>(false, every).first);
+    CHECK(max_abs_diff(cache.first, gather.first) < 1e-4f);  // same iteration, summed in another order
+  }
+}
+
+TEST_CASE("GPU persistent APGD kernel agrees with the launches", "[rbd_persistent][gpu]") {
+  for (std::size_t every : {std::size_t(120), std::size_t(7)}) {
+    INFO("check_every " << every);
+    const auto fused = solve_once<Gather, Nesterov>(true, every);
+    const auto launched = solve_once<Gather, Nesterov>(false, every);
+    CHECK(fused.second.iterations == launched.second.iterations);
+    CHECK(max_abs_diff(fused.first, launched.first) < 1e-3f);
+    CHECK(fused.second.residual() < 10 * launched.second.residual() + 1e-4f);
+    CHECK(launched.second.residual() < 10 * fused.second.residual() + 1e-4f);
+  }
+}
+
+TEST_CASE("GPU World steps with the persistent kernel as with launches", "[rbd_persistent][gpu]") {
+  auto run = [](bool persistent) {
+    auto set = pile<float>(5, 4);
+    SolverSettings<float> s;
+    s.persistent = persistent;
+    World<device::gpu, float, ConeFriction, Jacobi<Gather>> w(set, s);
+    std::vector<std::size_t> iterations;
+    for (int i = 0; i < 40; ++i) iterations.push_back(w.step().solver.iterations);
+    w.syncHost();
+    return std::make_pair(positions(set), iterations);
+  };
+  const auto fused = run(true);
+  CHECK(fused == run(false));
+  CHECK(fused.second.back() > 0);
+}
