@@ -132,14 +132,20 @@ struct CalcNextPhi {
   T inv_dt;
   T correction = T(1);
   GPUSOLVE_HD void operator()(std::size_t i) const {
+    T e[Model::rows];
+    error(i, e);
+    for (std::size_t r = 0; r < Model::rows; ++r) rhs(i, r) = e[r];
+  }
+  // Contact i's error, computed without writing it (JacobiContact stores it last).
+  GPUSOLVE_HD void error(std::size_t i, T* e) const {
     const detail::Frame<T, Model, CV> f(c, i);
     const std::uint32_t ia = c.a[i], ib = c.b[i];
     const math::Vector3<T> du =
         detail::point_velocity(detail::load3<T>(b.v, ia), detail::load3<T>(b.w, ia), detail::load3<T>(c.ra, i)) -
         detail::point_velocity(detail::load3<T>(b.v, ib), detail::load3<T>(b.w, ib), detail::load3<T>(c.rb, i));
-    for (std::size_t r = 0; r < Model::rows; ++r) rhs(i, r) = math::dot(f.q[r], du);
+    for (std::size_t r = 0; r < Model::rows; ++r) e[r] = math::dot(f.q[r], du);
     const T phi0 = c.phi0[i];
-    rhs(i, 0) += (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;
+    e[0] += (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;
   }
 };
 
@@ -166,23 +172,29 @@ struct ResolveCollisions {
   bool measure;
   VectorD1View<T> residual;
   GPUSOLVE_HD void operator()(std::size_t i) const {
+    T e[Model::rows];
+    for (std::size_t r = 0; r < Model::rows; ++r) e[r] = rhs(i, r);
+    update(i, e);
+  }
+  // The update from contact i's error e. Every load comes before the first
+  // store, which the compiler cannot move a load past (the views might alias):
+  // the loads then overlap instead of waiting on each other.
+  GPUSOLVE_HD void update(std::size_t i, const T* e) const {
     constexpr std::size_t R = Model::rows;
     const detail::Frame<T, Model, CV> f(c, i);
     T x[R], dx[R];
     for (std::size_t r = 0; r < R; ++r) {
       T s = 0;
-      for (std::size_t k = 0; k < R; ++k) s += c.dinv(i, r * R + k) * rhs(i, k);
+      for (std::size_t k = 0; k < R; ++k) s += c.dinv(i, r * R + k) * e[k];
       x[r] = c.x(i, r) - omega * s;
     }
     T mu = T(0);
     if constexpr (Model::friction) mu = c.mu[i];
     Model::project(x, mu);
-    for (std::size_t r = 0; r < R; ++r) {
-      dx[r] = x[r] - c.x(i, r);
-      c.x(i, r) = x[r];
-    }
+    for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - c.x(i, r);
     const detail::BodyResponse<T> d(b, c, i, f.world(dx));
     d.send(b, sink, i);
+    for (std::size_t r = 0; r < R; ++r) c.x(i, r) = x[r];
     if (measure) {
       const math::Vector3<T> du =
           detail::point_velocity(d.dva, d.dwa, d.ra) - detail::point_velocity(d.dvb, d.dwb, d.rb);
@@ -207,8 +219,10 @@ struct JacobiContact {
   CalcNextPhi<Model, BV, CV, T> phi;
   ResolveCollisions<Model, BV, CV, Sink, T> resolve;
   GPUSOLVE_HD void operator()(std::size_t i) const {
-    phi(i);
-    resolve(i);
+    T e[Model::rows];
+    phi.error(i, e);
+    resolve.update(i, e);
+    for (std::size_t r = 0; r < Model::rows; ++r) phi.rhs(i, r) = e[r];  // for APGD's restart test
   }
 };
 
