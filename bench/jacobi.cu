@@ -16,8 +16,9 @@
 // graph         = the same iteration's kernels captured N times into one CUDA
 //                 graph once and replayed (SolverSettings::graphs makes solve()
 //                 capture and update one per solve, which costs more than it saves).
-// --persistent: SolverSettings::persistent for solve(): on (the default) runs
-// the iterations between checks as one cooperative kernel, off launches them.
+// --persistent: on (the default) makes solve() run the iterations between
+// checks as one cooperative kernel at any size, off launches them
+// (SolverSettings::persistent_max_contacts at its largest or 0).
 // The tolerance is the smallest positive float and divergence detection is
 // off, so every solve runs its full count; the program checks that it did.
 // omega defaults to 0.3: on this close-packed pile (12 contacts per sphere) the
@@ -118,7 +119,7 @@ Row bench_strategy(rbd::Bodies<Dev, T>& bodies, rbd::Contacts<Dev, T, Model>& co
     s.omega = T(opt.omega);
     s.divergence_checks = 0;
     s.max_retries = 0;  // time the iterations, not restarts at a lower omega
-    s.persistent = opt.persistent;
+    s.persistent_max_contacts = opt.persistent ? ~std::size_t(0) : 0;
     s.max_iterations = n;
     s.check_every = check_every;
     restore();

@@ -1,7 +1,7 @@
 // The whole time step, per phase and in total, on the GPU and the CPU backend.
 //
 // Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance]
-//                          [--loop persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
+//                          [--loop auto,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
 //                          [--cpu-max 1000000] [--csv FILE]
 //
 // For each N the shared pile (bench/shared_pile.hpp, ../shared/bench/PILE.md)
@@ -11,10 +11,11 @@
 //   defaults:  World<device::gpu> with SolverSettings{} (APGD, 50 iterations);
 //   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500.
 // --loop: how the GPU runs the solver's iterations between two residual checks:
-//   persistent  one cooperative kernel (SolverSettings::persistent, the default);
-//   launches    a kernel launch per phase (persistent off, graphs off);
+//   auto        the library's choice (SolverSettings::persistent_max_contacts);
+//   persistent  one cooperative kernel at any size;
+//   launches    a kernel launch per phase (persistent_max_contacts 0, graphs off);
 //   graphs      the launches captured into CUDA graphs, and detection too
-//               (persistent off, graphs on).
+//               (persistent_max_contacts 0, graphs on).
 // GPU, after 20 warm-up steps:
 //   step     median of CUDA-event times around each advance(1): what a step loop pays;
 //   queued   advance(steps) timed as one: steps queued back to back, divided by steps;
@@ -52,7 +53,7 @@ using T = float;
 struct Options {
   std::vector<std::size_t> n{1000, 10000, 100000, 1000000};
   std::vector<std::string> modes{"jacobi10", "defaults", "tolerance"};
-  std::vector<std::string> loops{"persistent"};
+  std::vector<std::string> loops{"auto"};
   long settle = 900, steps = 100, cpu_steps = 20;
   std::size_t cpu_max = 1000000;
   std::string csv;
@@ -66,9 +67,12 @@ struct Row {
 
 SolverSettings<T> settings_for(const std::string& mode, const std::string& loop) {
   SolverSettings<T> s;
-  if (loop != "persistent" && loop != "launches" && loop != "graphs")
-    throw InvalidArgumentError("bench: unknown loop '" + loop + "' (persistent, launches, graphs)");
-  s.persistent = loop == "persistent";
+  if (loop == "persistent")
+    s.persistent_max_contacts = ~std::size_t(0);
+  else if (loop == "launches" || loop == "graphs")
+    s.persistent_max_contacts = 0;
+  else if (loop != "auto")
+    throw InvalidArgumentError("bench: unknown loop '" + loop + "' (auto, persistent, launches, graphs)");
   s.graphs = loop == "graphs";
   s.friction = T(0.5);  // PILE.md
   if (mode == "jacobi10") {
@@ -166,7 +170,7 @@ Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const 
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--loop persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
+      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--loop auto,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
       "[--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

@@ -21,7 +21,7 @@ rc=${PIPESTATUS[0]}
 status=0
 for tool in memcheck initcheck racecheck; do
   spec=()
-  [ "$tool" = racecheck ] && spec=("[rbd_step]~[graphs],[collision]")
+  [ "$tool" = racecheck ] && spec=("[rbd_step]~[graphs],[collision],[rbd_persistent]")
   compute-sanitizer --tool "$tool" --report-api-errors no --error-exitcode 9 \
     build/gpu/tests/gpusolve_gpu_tests "${spec[@]}" > "$out/$tool.log" 2>&1
   rc_tool=$?

@@ -22,7 +22,7 @@ std::pair<std::vector<float>, SolverStats<float>> solve_once(bool persistent, st
   SolverSettings<float> s;
   s.dt = 0.01f, s.margin = 0.02f, s.friction = 0.4f;
   s.tolerance = 1e-6f, s.max_iterations = 120, s.check_every = check_every;
-  s.persistent = persistent;
+  s.persistent_max_contacts = persistent ? ~std::size_t(0) : 0;
   prepare_solve(m.device(), c, s);
   const auto stats = JacobiSolver<device::gpu, float, ConeFriction, Strategy, MomentumTag>().solve(m.device(), c, s);
   Bodies<device::cpu, float> host;
@@ -72,7 +72,7 @@ TEST_CASE("GPU World steps with the persistent kernel as with launches", "[rbd_p
   auto run = [](bool persistent) {
     auto set = pile<float>(5, 4);
     SolverSettings<float> s;
-    s.persistent = persistent;
+    s.persistent_max_contacts = persistent ? ~std::size_t(0) : 0;
     World<device::gpu, float, ConeFriction, Jacobi<Gather>> w(set, s);
     std::vector<std::size_t> iterations;
     for (int i = 0; i < 40; ++i) iterations.push_back(w.step().solver.iterations);

@@ -74,12 +74,14 @@ TEST_CASE("queued steps: advance(N) moves the bodies exactly as N calls of step(
   same_stats(a.latest_stats(), b.latest_stats());
 }
 
-TEST_CASE("queued steps: the graphs setting leaves the CPU backend's loop as it is", "[rbd_step]") {
+TEST_CASE("queued steps: the GPU's loop settings (graphs, persistent) leave the CPU backend's loop as it is",
+          "[rbd_step]") {
   auto set_a = pile<double>(3, 2), set_b = set_a;
   SolverSettings<double> s = pile_settings();
   s.check_every = 7;  // runs of iterations between checks, the last one short
+  s.graphs = true, s.persistent_max_contacts = ~std::size_t(0);
   World<device::cpu, double> a(set_a, s);
-  s.graphs = false;
+  s.graphs = false, s.persistent_max_contacts = 0;
   World<device::cpu, double> b(set_b, s);
   a.advance(20), b.advance(20);
   CHECK(state(a) == state(b));

@@ -112,7 +112,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       measuring.resolve.measure = true;
       const detail::JacobiIteration<Contact, decltype(acc_.program(b)), decltype(momentum_.program(b, c, rhs))>
           iteration{plain, measuring, acc_.program(b), momentum_.program(b, c, rhs)};
-      const bool persistent = s.persistent && persistent_.available();
+      const bool persistent = nc <= s.persistent_max_contacts && persistent_.available();
       ConvergenceMonitor<T> monitor(s, st);
       // Iterations `first` ... `last`, the last one measuring the residual.
       auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
@@ -140,7 +140,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   Accumulator<Strategy, Device, T> acc_;
   Momentum<MomentumTag, Device, T> momentum_;
   detail::GraphReplay<Device> graph_;           // SolverSettings::graphs
-  detail::PersistentLoop<Device, T> persistent_;  // SolverSettings::persistent
+  detail::PersistentLoop<Device, T> persistent_;  // SolverSettings::persistent_max_contacts
 };
 
 // The method tag of projected Jacobi (a model of the Solver concept, solver.hpp).

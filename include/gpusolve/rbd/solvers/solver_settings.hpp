@@ -54,7 +54,8 @@ struct SolverSettings {
   // the other methods ignore it. max_iterations is shared among the substeps.
   std::size_t substeps = 4;
   bool throw_on_divergence = false;  // solve() throws DivergenceError instead of reporting it
-  // GPU: collision detection and the Jacobi-family solvers' runs of iterations
+  // GPU: collision detection and, where the persistent kernel is not used
+  // (persistent_max_contacts), the Jacobi-family solvers' runs of iterations
   // between two residual checks are captured into CUDA graphs, updated in place
   // and replayed (detail/graph_replay.hpp): the same kernels in the same order.
   // Off by default: capturing anew every step (the contact count changes the
@@ -62,11 +63,16 @@ struct SolverSettings {
   // on an H200 (bench/step.cu, README: 1.90 against 2.31 ms per step at the
   // defaults for 10 000 spheres). The CPU ignores it.
   bool graphs = false;
-  // GPU: the Jacobi-family solvers run each run of iterations between two
-  // residual checks as one cooperative kernel, the phases of an iteration
-  // separated by grid-wide barriers (detail/persistent_loop.hpp), the same
-  // functors as the launches; it takes precedence over `graphs`. The CPU ignores it.
-  bool persistent = true;
+  // GPU: the Jacobi-family solvers (and substepping through them) run each run
+  // of iterations between two residual checks as one cooperative kernel, the
+  // phases of an iteration separated by grid-wide barriers
+  // (detail/persistent_loop.hpp; the same functors as the launches), when the
+  // step has at most this many contacts; above it, or at 0, a launch per phase.
+  // It takes precedence over `graphs`. On the shared pile on an H200
+  // (bench/step.cu, README) the kernel made a step at the defaults 1.4 to 2.1
+  // times faster up to 281 000 contacts and 10% slower at 1.67 million, where an
+  // iteration is bound by bandwidth, not by launches. The CPU ignores it.
+  std::size_t persistent_max_contacts = 1000000;
 
   // Throws InvalidArgumentError naming the first offending field.
   void validate() const {
