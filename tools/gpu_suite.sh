@@ -3,7 +3,8 @@
 # sm_90 preset, runs ctest (host and GPU suites, consumers, audit), then the GPU
 # suite under compute-sanitizer memcheck and initcheck (reads of device memory
 # never written), and racecheck (shared-memory hazards) over the tests that run
-# the step's CUB sorts, scans, selections and reductions (the whole suite under
+# the step's CUB sorts, scans, selections and reductions and the persistent
+# solver kernel's block reductions (the whole suite under
 # racecheck takes longer than ten minutes; the graph replay test too). Logs go
 # to $OUT (or ./out/gpu).
 # API errors are not reported by the sanitizer because the error-path tests

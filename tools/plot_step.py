@@ -2,9 +2,10 @@
 """Charts the CSVs of gpusolve_bench_step (bench/step.cu), log-log:
 
   left:  time per whole step against the number of spheres, one line per
-         backend, mode and graphs setting;
+         backend, mode and GPU loop (the `loop` column; older CSVs have a
+         `graphs` column instead);
   right: the GPU's detection and solve phases against the number of spheres,
-         at 10 Jacobi iterations and at the defaults (graphs as run).
+         at 10 Jacobi iterations and at the defaults (loops as run).
 
 Usage: python3 tools/plot_step.py CSV [CSV ...] -o step.png
 """
@@ -42,13 +43,19 @@ def main(argv):
     plt = pyplot()
     fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5.2))
 
+    def loop(r):
+        return r["loop"] if "loop" in r else "graphs " + r["graphs"]
+
     def label(r):
-        graphs = "" if r["backend"] == "cpu" else (", graphs " + r["graphs"])
-        return f'{r["backend"]} {r["mode"]}{graphs}'
+        return r["backend"] + " " + r["mode"] + ("" if r["backend"] == "cpu" else ", " + loop(r))
+
+    def style(name):
+        if name.startswith("cpu"):
+            return "--"
+        return ":" if name.endswith(("launches", "graphs on")) else "-"
 
     for name, pts in sorted(series(rows, label, "ms_step_median").items()):
-        style = "--" if name.startswith("cpu") else (":" if name.endswith("on") else "-")
-        left.plot([p[0] for p in pts], [p[1] for p in pts], style, marker="o", label=name)
+        left.plot([p[0] for p in pts], [p[1] for p in pts], style(name), marker="o", label=name)
     finish_axes(left, "spheres (the shared pile of PILE.md, after it fell for a while)",
                 "ms per whole step (median)", "time per step")
 
@@ -58,7 +65,8 @@ def main(argv):
             right.plot([p[0] for p in pts], [p[1] for p in pts], "-" if phase == "ms_solve" else "--", marker="o",
                        label=f'{phase[3:]}: {name[4:]}')
     finish_axes(right, "spheres", "ms per step (median, CUDA events)", "GPU phases")
-    threads = rows[0].get("cpu_threads") or "thread count not recorded"
+    threads = rows[0].get("cpu_threads")
+    threads = f"{threads} OpenMP threads" if threads else "thread count not recorded"
     fig.suptitle(f'gpusolve whole step on {rows[0]["gpu"]} (cpu rows: the host backend on its host, {threads})')
     fig.tight_layout()
     fig.savefig(a.out, dpi=110)
