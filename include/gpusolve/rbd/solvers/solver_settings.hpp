@@ -70,8 +70,9 @@ struct SolverSettings {
   // step has at most this many contacts; above it, or at 0, a launch per phase.
   // It takes precedence over `graphs`. On the shared pile on an H200
   // (bench/step.cu, README) the kernel made a step at the defaults 1.4 to 2.1
-  // times faster up to 281 000 contacts and 10% slower at 1.67 million, where an
-  // iteration is bound by bandwidth, not by launches. The CPU ignores it.
+  // times faster up to 281 000 contacts, 13% faster at 529 000, 2% slower at
+  // 1.02 million and 10% slower at 1.67 million, where an iteration is bound by
+  // bandwidth, not by launches. The CPU ignores it.
   std::size_t persistent_max_contacts = 1000000;
 
   // Throws InvalidArgumentError naming the first offending field.
