@@ -176,9 +176,10 @@ struct ResolveCollisions {
     for (std::size_t r = 0; r < Model::rows; ++r) e[r] = rhs(i, r);
     update(i, e);
   }
-  // The update from contact i's error e. Every load comes before the first
-  // store, which the compiler cannot move a load past (the views might alias):
-  // the loads then overlap instead of waiting on each other.
+  // The update from contact i's error e. The new x is stored only after the
+  // body response was computed and sent: the compiler may not move a load past
+  // a store (the views might alias), so storing first would make the response's
+  // loads (offsets, masses, inertias) wait for it instead of overlapping.
   GPUSOLVE_HD void update(std::size_t i, const T* e) const {
     constexpr std::size_t R = Model::rows;
     const detail::Frame<T, Model, CV> f(c, i);
