@@ -1,4 +1,4 @@
-// DeviceAlgorithms: the device-wide sort, scan, select and max of a time step,
+// DeviceAlgorithms: the device-wide sort, scan, select and reductions of a time step,
 // queued on a stream with one temporary buffer kept between calls, so that a
 // warm step allocates nothing and never waits for the device. GPU: CUB; host:
 // sequential loops with the same results (the sort is stable on both).
@@ -39,6 +39,12 @@ struct MinOp {
   template <class T>
   GPUSOLVE_HD T operator()(const T& a, const T& b) const {
     return b < a ? b : a;
+  }
+};
+struct PlusOp {
+  template <class T>
+  GPUSOLVE_HD T operator()(const T& a, const T& b) const {
+    return a + b;
   }
 };
 
@@ -135,6 +141,25 @@ class DeviceAlgorithms {
     reduce_into(n, f, init, MaxOp{}, out, stream);
   }
 
+  // Grows the kept buffer for reduce_into(n, f, init, op, out) now, so that
+  // the call itself allocates nothing (it may then be captured into a graph).
+  template <class F, class T, class Op>
+  void reserve_reduce(std::size_t n, F f, T init, Op op, T* out) {
+    if constexpr (gpu) {
+#if GPUSOLVE_HAS_NVCC
+      const thrust::counting_iterator<std::size_t> first(0);
+      std::size_t bytes = 0;
+      GPUSOLVE_CUDA_CHECK(
+          cub::DeviceReduce::TransformReduce(nullptr, bytes, first, out, items(n), op, f, init, stream_t{}));
+      grow(bytes);
+#else
+      unsupported();
+#endif
+    } else {
+      (void)n, (void)f, (void)init, (void)op, (void)out;
+    }
+  }
+
   // Bytes of temporary storage held (GPU; stays put once warm).
   std::size_t scratch_bytes() const { return temp_.size_x(); }
 
@@ -148,8 +173,11 @@ class DeviceAlgorithms {
   void run(Call&& call) {
     std::size_t bytes = 0;
     GPUSOLVE_CUDA_CHECK(call(nullptr, bytes));
-    if (temp_.size_x() < bytes) temp_.resize(bytes + bytes / 2);
+    grow(bytes);
     GPUSOLVE_CUDA_CHECK(call(static_cast<void*>(temp_.data()), bytes));
+  }
+  void grow(std::size_t bytes) {
+    if (temp_.size_x() < bytes) temp_.resize(bytes + bytes / 2);
   }
   [[noreturn]] static void unsupported() {
     throw UnsupportedError("gpusolve: device-wide algorithms on device::gpu need this translation unit compiled by nvcc");
