@@ -15,6 +15,7 @@
 #include "gpusolve/rbd/detail/launch_exec.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/solvers/iterate.hpp"
 
 namespace gpusolve::rbd {
 
@@ -32,11 +33,12 @@ struct Gather {};
 // Accumulator<Strategy, Device, T>: prepare() once per step after the contacts
 // are known, sink() for ResolveCollisions (add(entry, body, dv, dw)), apply()
 // adds the iteration's sums to the body velocities (UpdateVelocities) and
-// leaves the accumulator ready for the next iteration. program(b) is apply()
-// as phases of an iteration program (detail/persistent_loop.hpp): apply() runs
-// it with a launch per phase, a persistent kernel runs it between barriers. Its
-// last phase is left open (no sync at the end): the caller may add work that
-// does not touch the velocities to it.
+// leaves the accumulator ready for the next iteration. program(b, it) is apply()
+// as phases of an iteration program (detail/persistent_loop.hpp), the sums
+// added to the velocities by the iterate `it` (iterate.hpp; by default to the
+// velocities as they are): apply() runs it with a launch per phase, a
+// persistent kernel runs it between barriers. Its last phase is left open (no
+// sync at the end): the caller may add work that does not touch the velocities to it.
 template <class Strategy, class Device, class T>
 class Accumulator;
 
@@ -71,12 +73,14 @@ struct ReduceVelocityUpdates {
 };
 
 // UpdateVelocities after the cache was reduced (Sum = false: the segment's first
-// position holds the total) or summing the segment here (Sum = true: Gather).
-template <class BV, class T, bool Sum>
+// position holds the total) or summing the segment here (Sum = true: Gather);
+// the iterate (iterate.hpp) adds the sums to the velocities.
+template <class BV, class T, bool Sum, class Iterate>
 struct CacheToBodies {
   BV b;
   VectorD2View<T> dv, dw;
   VectorD1View<std::uint32_t> start;
+  Iterate iterate;
   GPUSOLVE_HD void operator()(std::size_t k) const {
     const std::uint32_t first = start[k], end = start[k + 1];
     const std::uint32_t last = (Sum || end == first) ? end : first + 1;
@@ -85,16 +89,16 @@ struct CacheToBodies {
     T sv[3] = {}, sw[3] = {};
     for (std::uint32_t p = first; p < last; ++p)
       for (std::size_t c = 0; c < 3; ++c) sv[c] += dv(p, c), sw[c] += dw(p, c);
-    for (std::size_t c = 0; c < 3; ++c) b.v(k, c) += sv[c], b.w(k, c) += sw[c];
+    iterate.add(b, k, sv, sw);
   }
 };
 
 // The apply() programs of the three strategies.
-template <class BV, class T, bool Sum>
+template <class BV, class T, bool Sum, class Iterate>
 struct CacheApply {
   ReduceVelocityUpdates<T> pass;  // pass.o is set per pass
   std::size_t passes, entries, bodies;
-  CacheToBodies<BV, T, Sum> to_bodies;
+  CacheToBodies<BV, T, Sum, Iterate> to_bodies;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
@@ -119,21 +123,24 @@ struct AtomicSink {
   }
 };
 
-template <class BV, class T>
+template <class BV, class T, class Iterate>
 struct AtomicToBodies {
   BV b;
   VectorD2View<T> dv, dw;
+  Iterate iterate;
+  // Zeroes the accumulator after the velocities' loads and stores: a store
+  // before them would hold the loads back (the views might alias).
   GPUSOLVE_HD void operator()(std::size_t k) const {
-    for (std::size_t c = 0; c < 3; ++c) {
-      b.v(k, c) += dv(k, c), b.w(k, c) += dw(k, c);
-      dv(k, c) = 0, dw(k, c) = 0;
-    }
+    T sv[3], sw[3];
+    for (std::size_t c = 0; c < 3; ++c) sv[c] = dv(k, c), sw[c] = dw(k, c);
+    iterate.add(b, k, sv, sw);
+    for (std::size_t c = 0; c < 3; ++c) dv(k, c) = 0, dw(k, c) = 0;
   }
 };
 
-template <class BV, class T>
+template <class BV, class T, class Iterate>
 struct AtomicApply {
-  AtomicToBodies<BV, T> to_bodies;
+  AtomicToBodies<BV, T, Iterate> to_bodies;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
@@ -154,11 +161,11 @@ class CacheStore {
   }
   CacheSink<T> sink() { return CacheSink<T>{dv_.view(), dw_.view(), grouping_.view().slot}; }
  protected:
-  template <bool Sum, class BV>
-  CacheApply<BV, T, Sum> cache_program(const BV& b, std::size_t passes) {
+  template <bool Sum, class BV, class Iterate>
+  CacheApply<BV, T, Sum, Iterate> cache_program(const BV& b, std::size_t passes, const Iterate& it) {
     const auto g = grouping_.view();
     return {{dv_.view(), dw_.view(), g.rank, 0}, passes, entries_, b.size(),
-            {b, dv_.view(), dw_.view(), g.start}};
+            {b, dv_.view(), dw_.view(), g.start, it}};
   }
   ContactGrouping<Device> grouping_;
   Vec3Store<Device, T> dv_, dw_;
@@ -171,9 +178,9 @@ template <class Device, class T>
 class Accumulator<UpdateCache, Device, T> : public detail::CacheStore<Device, T> {
  public:
   std::size_t passes() { return this->grouping_.passes(); }  // waits for the grouping once per step
-  template <class BV>
-  detail::CacheApply<BV, T, false> program(const BV& b) {
-    return this->template cache_program<false>(b, passes());
+  template <class BV, class Iterate = detail::CurrentIterate<T>>
+  detail::CacheApply<BV, T, false, Iterate> program(const BV& b, const Iterate& it = Iterate{}) {
+    return this->template cache_program<false>(b, passes(), it);
   }
   template <class BV>
   void apply(const BV& b, stream_t stream = stream_t{}) {
@@ -185,9 +192,9 @@ template <class Device, class T>
 class Accumulator<Gather, Device, T> : public detail::CacheStore<Device, T> {
  public:
   std::size_t passes() const { return 0; }
-  template <class BV>
-  detail::CacheApply<BV, T, true> program(const BV& b) {
-    return this->template cache_program<true>(b, 0);
+  template <class BV, class Iterate = detail::CurrentIterate<T>>
+  detail::CacheApply<BV, T, true, Iterate> program(const BV& b, const Iterate& it = Iterate{}) {
+    return this->template cache_program<true>(b, 0, it);
   }
   template <class BV>
   void apply(const BV& b, stream_t stream = stream_t{}) {
@@ -204,9 +211,9 @@ class Accumulator<Atomic, Device, T> {
     if (!detail::ensure_size(dw_, b.size(), 3)) dw_.fill(T(0), stream);
   }
   detail::AtomicSink<T> sink() { return detail::AtomicSink<T>{dv_.view(), dw_.view()}; }
-  template <class BV>
-  detail::AtomicApply<BV, T> program(const BV& b) {
-    return {{b, dv_.view(), dw_.view()}};
+  template <class BV, class Iterate = detail::CurrentIterate<T>>
+  detail::AtomicApply<BV, T, Iterate> program(const BV& b, const Iterate& it = Iterate{}) {
+    return {{b, dv_.view(), dw_.view(), it}};
   }
   template <class BV>
   void apply(const BV& b, stream_t stream = stream_t{}) {

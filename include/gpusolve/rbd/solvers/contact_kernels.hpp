@@ -10,6 +10,7 @@
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
+#include "gpusolve/rbd/solvers/iterate.hpp"
 
 namespace gpusolve::rbd {
 
@@ -136,13 +137,16 @@ struct CalcNextPhi {
     error(i, e);
     for (std::size_t r = 0; r < Model::rows; ++r) rhs(i, r) = e[r];
   }
-  // Contact i's error, computed without writing it (JacobiContact stores it last).
-  GPUSOLVE_HD void error(std::size_t i, T* e) const {
+  // Contact i's error at the velocities `it` gives (detail/iterate.hpp), computed without writing it.
+  template <class Iterate = detail::CurrentIterate<T>>
+  GPUSOLVE_HD void error(std::size_t i, T* e, const Iterate& it = Iterate{}) const {
     const detail::Frame<T, Model, CV> f(c, i);
     const std::uint32_t ia = c.a[i], ib = c.b[i];
-    const math::Vector3<T> du =
-        detail::point_velocity(detail::load3<T>(b.v, ia), detail::load3<T>(b.w, ia), detail::load3<T>(c.ra, i)) -
-        detail::point_velocity(detail::load3<T>(b.v, ib), detail::load3<T>(b.w, ib), detail::load3<T>(c.rb, i));
+    math::Vector3<T> va, wa, vb, wb;
+    it.velocity(b, ia, va, wa);
+    it.velocity(b, ib, vb, wb);
+    const math::Vector3<T> du = detail::point_velocity(va, wa, detail::load3<T>(c.ra, i)) -
+                                detail::point_velocity(vb, wb, detail::load3<T>(c.rb, i));
     for (std::size_t r = 0; r < Model::rows; ++r) e[r] = math::dot(f.q[r], du);
     const T phi0 = c.phi0[i];
     e[0] += (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;
@@ -176,26 +180,29 @@ struct ResolveCollisions {
     for (std::size_t r = 0; r < Model::rows; ++r) e[r] = rhs(i, r);
     update(i, e);
   }
-  // The update from contact i's error e. The new x is stored only after the
-  // body response was computed and sent: the compiler may not move a load past
-  // a store (the views might alias), so storing first would make the response's
-  // loads (offsets, masses, inertias) wait for it instead of overlapping.
-  GPUSOLVE_HD void update(std::size_t i, const T* e) const {
+  // The update from contact i's error e, starting from the impulse `it` gives
+  // (detail/iterate.hpp). The new x is stored only after the body response was
+  // computed and sent: the compiler may not move a load past a store (the views
+  // might alias), so storing first would make the response's loads (offsets,
+  // masses, inertias) wait for it instead of overlapping.
+  template <class Iterate = detail::CurrentIterate<T>>
+  GPUSOLVE_HD void update(std::size_t i, const T (&e)[Model::rows], const Iterate& it = Iterate{}) const {
     constexpr std::size_t R = Model::rows;
     const detail::Frame<T, Model, CV> f(c, i);
-    T x[R], dx[R];
+    T y[R], x[R], dx[R];
+    it.start(c, i, y);
     for (std::size_t r = 0; r < R; ++r) {
       T s = 0;
       for (std::size_t k = 0; k < R; ++k) s += c.dinv(i, r * R + k) * e[k];
-      x[r] = c.x(i, r) - omega * s;
+      x[r] = y[r] - omega * s;
     }
     T mu = T(0);
     if constexpr (Model::friction) mu = c.mu[i];
     Model::project(x, mu);
-    for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - c.x(i, r);
+    for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - y[r];
     const detail::BodyResponse<T> d(b, c, i, f.world(dx));
     d.send(b, sink, i);
-    for (std::size_t r = 0; r < R; ++r) c.x(i, r) = x[r];
+    it.store(c, i, e, x);
     if (measure) {
       const math::Vector3<T> du =
           detail::point_velocity(d.dva, d.dwa, d.ra) - detail::point_velocity(d.dvb, d.dwb, d.rb);
@@ -212,18 +219,19 @@ struct ResolveCollisions {
 };
 
 // One Jacobi iteration's work on contact i in one kernel: its velocity error,
-// then its projected update. The update reads only contact i's own error, and
-// the velocities it reads change only after the kernel (Sink accumulates), so
-// fusing saves a launch and a pass over rhs without changing a bit.
-template <class Model, class BV, class CV, class Sink, class T>
+// then its projected update, both at the iterate `iterate` gives. The update
+// reads only contact i's own error, and the velocities it reads change only
+// after the kernel (Sink accumulates), so fusing saves a launch and a pass over
+// rhs without changing a bit; the error stays in registers.
+template <class Model, class BV, class CV, class Sink, class T, class Iterate = detail::CurrentIterate<T>>
 struct JacobiContact {
   CalcNextPhi<Model, BV, CV, T> phi;
   ResolveCollisions<Model, BV, CV, Sink, T> resolve;
+  Iterate iterate;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     T e[Model::rows];
-    phi.error(i, e);
-    resolve.update(i, e);
-    for (std::size_t r = 0; r < Model::rows; ++r) phi.rhs(i, r) = e[r];  // for APGD's restart test
+    phi.error(i, e, iterate);
+    resolve.update(i, e, iterate);
   }
 };
 

@@ -31,9 +31,11 @@ namespace detail {
 
 // One iteration of the Jacobi family as an iteration program
 // (persistent_loop.hpp): every contact's projected update (`measuring` in the
-// last iteration of a run, which records the residual), their sum per body
-// (Apply, the accumulation strategy), then unless it is the last the momentum
-// step (Step), its first phase joined to Apply's last.
+// last iteration of a run, which records the residual), then, unless it is the
+// last, the momentum's step (Step, which ends in the barrier the next phase
+// needs), then their sum per body (Apply, the accumulation strategy). Contact
+// and body phases go through the momentum's iterate (iterate.hpp), so a
+// momentum method costs no phase of its own: two barriers per iteration.
 template <class Contact, class Apply, class Step>
 struct JacobiIteration {
   Contact plain, measuring;
@@ -42,16 +44,15 @@ struct JacobiIteration {
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e, bool last) const {
-    if (last)
+    if (last) {
       e.each(plain.phi.c.size(), measuring);
-    else
-      e.each(plain.phi.c.size(), plain);
-    e.sync();
-    apply(e);
-    if (last)
       e.sync();
-    else
+    } else {
+      e.each(plain.phi.c.size(), plain);
       momentum(e);
+    }
+    apply(e);
+    e.sync();
   }
 };
 
@@ -105,13 +106,15 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       } else {
         contacts.x.fill(T(0), stream);
       }
-      momentum_.begin(b, c, rhs, stream);
-      using Contact = JacobiContact<Model, BV, CV, Sink, T>;
-      const Contact plain{{b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, acc_.sink(), omega, false, residual}};
+      momentum_.begin(b, c, stream);
+      const auto look = momentum_.iterate();
+      using Contact = JacobiContact<Model, BV, CV, Sink, T, decltype(look)>;
+      const Contact plain{
+          {b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, acc_.sink(), omega, false, residual}, look};
       Contact measuring = plain;
       measuring.resolve.measure = true;
-      const detail::JacobiIteration<Contact, decltype(acc_.program(b)), decltype(momentum_.program(b, c, rhs))>
-          iteration{plain, measuring, acc_.program(b), momentum_.program(b, c, rhs)};
+      const detail::JacobiIteration<Contact, decltype(acc_.program(b, look)), decltype(momentum_.program())>
+          iteration{plain, measuring, acc_.program(b, look), momentum_.program()};
       const bool persistent = nc <= s.persistent_max_contacts && persistent_.available();
       ConvergenceMonitor<T> monitor(s, st);
       // Iterations `first` ... `last`, the last one measuring the residual.
@@ -128,7 +131,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
         else
           iterations(first, last, stream);
         if (monitor.stop(last, this->residual(b, nc, stream))) break;
-        momentum_.after_iteration(b, c, rhs, stream);
+        momentum_.after_iteration(stream);
         first = last + 1;
       }
     };

@@ -12,6 +12,7 @@
 #include "gpusolve/rbd/detail/launch_exec.hpp"
 #include "gpusolve/rbd/detail/reduce.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/solvers/iterate.hpp"
 
 namespace gpusolve::rbd {
 
@@ -21,7 +22,8 @@ struct Nesterov {};
 
 namespace detail {
 
-// The after_iteration() program of NoMomentum: closes the phase it joins.
+// The program of NoMomentum between an iteration's contact phase and its body
+// phase: a barrier, so that every contact's change is in before the sums.
 struct NoStep {
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
@@ -33,146 +35,181 @@ struct NoStep {
 }  // namespace detail
 
 // Momentum<Tag, Device, T>: begin() when an attempt's start impulses and
-// velocities agree (sizes all its storage); after_iteration() once per iteration that goes on, with
-// contacts.x and the velocities at the projected iterate and rhs the gradient
-// it was computed from. program(b, c, rhs) is after_iteration() as phases of an
-// iteration program (detail/persistent_loop.hpp), valid after begin(): its
-// first phase joins the accumulator's last one (it reads only impulses), its
-// last ends with a sync; summer() is the SumInto a LaunchExec running it needs.
+// velocities agree (sizes all its storage). iterate() is the iterate
+// (iterate.hpp) the iterations' contact and body phases go through; program()
+// runs between the two phases of an iteration that goes on (it must end in a
+// barrier, which it may take from a sum), after_iteration() where a run of
+// iterations ends without the last one's program; both valid after begin().
+// summer() is the SumInto a LaunchExec running program() needs.
 template <class Tag, class Device, class T>
 class Momentum {
  public:
   template <class BV, class CV>
-  void begin(const BV&, const CV&, VectorD2View<T>, stream_t) {}
-  template <class BV, class CV>
-  void after_iteration(const BV&, const CV&, VectorD2View<T>, stream_t) {}
-  template <class BV, class CV>
-  detail::NoStep program(const BV&, const CV&, VectorD2View<T>) {
-    return {};
-  }
+  void begin(const BV&, const CV&, stream_t) {}
+  detail::CurrentIterate<T> iterate() { return {}; }
+  detail::NoStep program() { return {}; }
+  void after_iteration(stream_t) {}
   SumInto<Device, T>* summer() { return nullptr; }
 };
 
 namespace detail {
 
-// state = {theta, beta, restart test}: Nesterov's sequence theta_{k+1} solving
-// theta_{k+1}^2 = (1 - theta_{k+1}) theta_k^2, beta = theta_k (1 - theta_k) /
-// (theta_k^2 + theta_{k+1}); a step that went uphill (gradient . step > 0)
-// restarts it (O'Donoghue and Candes 2015, "Adaptive restart for accelerated
-// gradient schemes"), as Mazhar et al. 2015 do in APGD.
+// The momentum's scalars: {theta, beta for the contact phase, restart test,
+// beta for the body phase}.
+enum : std::size_t { theta_slot, beta_slot, uphill_slot, body_beta_slot, momentum_slots };
+
+// Nesterov's sequence theta_{k+1} solving theta_{k+1}^2 = (1 - theta_{k+1})
+// theta_k^2, beta = theta_k (1 - theta_k) / (theta_k^2 + theta_{k+1}); a step
+// that went uphill (gradient . step > 0) restarts it (O'Donoghue and Candes
+// 2015, "Adaptive restart for accelerated gradient schemes"), as Mazhar et al.
+// 2015 do in APGD.
 template <class T>
 struct UpdateMomentum {
   T* state;
   GPUSOLVE_HD void operator()(std::size_t) const {
-    const T theta = state[0];
-    if (!(state[2] <= T(0))) {  // uphill, or not finite: restart
-      state[0] = T(1), state[1] = T(0);
+    const T theta = state[theta_slot];
+    if (!(state[uphill_slot] <= T(0))) {  // uphill, or not finite: restart
+      state[theta_slot] = T(1), state[beta_slot] = T(0);
       return;
     }
     const T t2 = theta * theta;
     const T next = (-t2 + std::sqrt(t2 * t2 + 4 * t2)) / 2;
-    state[1] = theta * (T(1) - theta) / (t2 + next);
-    state[0] = next;
+    state[beta_slot] = theta * (T(1) - theta) / (t2 + next);
+    state[theta_slot] = next;
   }
 };
 
-// The gradient restart test: sum over contacts of rhs . (x_{k+1} - x_k).
-template <class CV, class T>
-struct StepAlongGradient {
-  CV c;
-  VectorD2View<T> rhs, px;
-  GPUSOLVE_HD T operator()(std::size_t i) const {
-    T s = 0;
-    for (std::size_t r = 0; r < px.size_y(); ++r) s += rhs(i, r) * (c.x(i, r) - px(i, r));
-    return s;
-  }
-};
-
-// y = x + beta (x - x_prev) for the impulses and, since velocities are affine
-// in the impulses, for the moving bodies' velocities; x is kept as x_prev.
-template <class BV, class CV, class T>
-struct Extrapolate {
-  BV b;
-  CV c;
+// The iterate of Nesterov's method: an iteration starts from y = x + beta (x -
+// x_prev), for the impulses and, since velocities are affine in the impulses,
+// for the bodies' velocities (a body that does not move has v = v_prev). x and v hold the last projected iterate;
+// y is formed where it is read (each contact's start, each body's velocities in
+// the errors and the sums) instead of in a pass of its own, and the new x keeps
+// the old one as x_prev. store() also writes the contact's term of the restart
+// test, e . (x_{k+1} - x_k), e being the gradient at y. The contact phase reads
+// beta from beta_slot while the one thread that updates the momentum may write
+// it again after the phase, so the body phase reads its copy, body_beta_slot,
+// which contact 0 writes.
+template <class T>
+struct ExtrapolatedIterate {
   VectorD2View<T> px, pv, pw;
-  const T* state;
-  GPUSOLVE_HD void operator()(std::size_t i) const {
-    const T beta = state[1];
-    if (i < c.size())
-      for (std::size_t r = 0; r < px.size_y(); ++r) {
-        const T x = c.x(i, r);
-        c.x(i, r) = x + beta * (x - px(i, r));
-        px(i, r) = x;
-      }
-    if (i < b.size() && b.moving(i))
-      for (std::size_t k = 0; k < 3; ++k) {
-        const T v = b.v(i, k), w = b.w(i, k);
-        b.v(i, k) = v + beta * (v - pv(i, k));
-        b.w(i, k) = w + beta * (w - pw(i, k));
-        pv(i, k) = v, pw(i, k) = w;
-      }
+  VectorD1View<T> uphill;  // per contact
+  T* state;
+  template <class CV, std::size_t R>
+  GPUSOLVE_HD void start(const CV& c, std::size_t i, T (&y)[R]) const {
+    const T beta = state[beta_slot];
+    for (std::size_t r = 0; r < R; ++r) {
+      const T x = c.x(i, r);
+      y[r] = x + beta * (x - px(i, r));
+    }
+  }
+  template <class BV>
+  GPUSOLVE_HD void velocity(const BV& b, std::uint32_t k, math::Vector3<T>& v, math::Vector3<T>& w) const {
+    const T beta = state[beta_slot];
+    for (std::size_t c = 0; c < 3; ++c) {
+      const T vc = b.v(k, c), wc = b.w(k, c);
+      v[c] = vc + beta * (vc - pv(k, c));
+      w[c] = wc + beta * (wc - pw(k, c));
+    }
+  }
+  template <class CV, std::size_t R>
+  GPUSOLVE_HD void store(const CV& c, std::size_t i, const T (&e)[R], const T (&x)[R]) const {
+    T s = 0;
+    for (std::size_t r = 0; r < R; ++r) {
+      const T old = c.x(i, r);
+      s += e[r] * (x[r] - old);
+      px(i, r) = old;
+      c.x(i, r) = x[r];
+    }
+    uphill[i] = s;
+    if (i == 0) state[body_beta_slot] = state[beta_slot];
+  }
+  template <class BV>
+  GPUSOLVE_HD void add(const BV& b, std::size_t k, const T (&sv)[3], const T (&sw)[3]) const {
+    const T beta = state[body_beta_slot];
+    for (std::size_t c = 0; c < 3; ++c) {
+      const T v = b.v(k, c), w = b.w(k, c);
+      b.v(k, c) = v + beta * (v - pv(k, c)) + sv[c];
+      b.w(k, c) = w + beta * (w - pw(k, c)) + sw[c];
+      pv(k, c) = v, pw(k, c) = w;
+    }
   }
 };
 
-// One momentum step: the restart test's sum, theta and beta (the one thread
-// that reads the sum at once), the extrapolation.
-template <class BV, class CV, class T>
+// Reads contact i's term of the restart test.
+template <class T>
+struct UphillTerm {
+  VectorD1View<T> uphill;
+  GPUSOLVE_HD T operator()(std::size_t i) const { return uphill[i]; }
+};
+
+// Between the contact and the body phase: the restart test's sum (its barrier
+// is the one the body phase needs; each index reads back the terms it wrote
+// itself), then theta and beta, by the one thread that holds the sum.
+template <class T>
 struct NesterovStep {
-  StepAlongGradient<CV, T> gradient;
+  UphillTerm<T> term;
+  std::size_t contacts;
   UpdateMomentum<T> update;
-  Extrapolate<BV, CV, T> extrapolate;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
-    e.sum(extrapolate.c.size(), gradient, update.state + 2);
+    e.sum(contacts, term, update.state + uphill_slot);
     e.each(1, update);
-    e.sync();
-    const std::size_t nc = extrapolate.c.size(), nb = extrapolate.b.size();
-    e.each(nc > nb ? nc : nb, extrapolate);
-    e.sync();
   }
 };
 
-// Keeps the start of an attempt as x_prev and sets theta = 1 (Extrapolate with beta 0).
-template <class T>
+// The start of an attempt: theta = 1, beta = 0, and the start kept as x_prev.
+template <class BV, class CV, class T>
 struct ResetMomentum {
+  BV b;
+  CV c;
+  VectorD2View<T> px, pv, pw;
   T* state;
-  GPUSOLVE_HD void operator()(std::size_t) const { state[0] = T(1), state[1] = T(0), state[2] = T(0); }
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    if (i == 0)
+      for (std::size_t k = 0; k < momentum_slots; ++k) state[k] = k == theta_slot ? T(1) : T(0);
+    if (i < c.size())
+      for (std::size_t r = 0; r < px.size_y(); ++r) px(i, r) = c.x(i, r);
+    if (i < b.size())
+      for (std::size_t k = 0; k < 3; ++k) pv(i, k) = b.v(i, k), pw(i, k) = b.w(i, k);
+  }
 };
 
 }  // namespace detail
 
 // Nesterov momentum: the iterate the next Jacobi step starts from is extrapolated
-// past the last one. Its scalars stay in the backend's memory (no host wait per iteration).
+// past the last one (ExtrapolatedIterate). It adds no pass of its own: one sum and
+// one single-thread kernel per iteration. Its scalars stay in the backend's memory
+// (no host wait per iteration).
 template <class Device, class T>
 class Momentum<Nesterov, Device, T> {
  public:
   template <class BV, class CV>
-  void begin(const BV& b, const CV& c, VectorD2View<T> rhs, stream_t stream) {
+  void begin(const BV& b, const CV& c, stream_t stream) {
     detail::ensure_size(px_, c.size(), c.x.size_y());
     detail::ensure_size(pv_, b.size(), 3);
     detail::ensure_size(pw_, b.size(), 3);
-    if (state_.size_x() == 0) state_.resize(3);
-    // Sized here, so that after_iteration allocates nothing (it may be captured into a graph).
-    sum_.reserve(c.size(), detail::StepAlongGradient<CV, T>{c, rhs, px_.view()}, state_.data() + 2);
-    launch(Device{}, 1, detail::ResetMomentum<T>{state_.data()}, stream);
+    detail::ensure_size(uphill_, c.size());
+    if (state_.size_x() == 0) state_.resize(detail::momentum_slots);
+    contacts_ = c.size();
+    // Sized here, so that the iterations allocate nothing (they may be captured into a graph).
+    sum_.reserve(contacts_, detail::UphillTerm<T>{uphill_.view()}, state_.data() + detail::uphill_slot);
     const std::size_t n = c.size() > b.size() ? c.size() : b.size();
-    launch(Device{}, n, program(b, c, rhs).extrapolate, stream);  // beta 0: records the start as x_prev
+    launch(Device{}, n, detail::ResetMomentum<BV, CV, T>{b, c, px_.view(), pv_.view(), pw_.view(), state_.data()},
+           stream);
   }
-  template <class BV, class CV>
-  void after_iteration(const BV& b, const CV& c, VectorD2View<T> rhs, stream_t stream) {
-    program(b, c, rhs)(detail::LaunchExec<Device, T>{stream, &sum_});
+  detail::ExtrapolatedIterate<T> iterate() {
+    return {px_.view(), pv_.view(), pw_.view(), uphill_.view(), state_.data()};
   }
-  template <class BV, class CV>
-  detail::NesterovStep<BV, CV, T> program(const BV& b, const CV& c, VectorD2View<T> rhs) {
-    return {{c, rhs, px_.view()}, {state_.data()}, {b, c, px_.view(), pv_.view(), pw_.view(), state_.data()}};
-  }
+  detail::NesterovStep<T> program() { return {{uphill_.view()}, contacts_, {state_.data()}}; }
+  void after_iteration(stream_t stream) { program()(detail::LaunchExec<Device, T>{stream, &sum_}); }
   SumInto<Device, T>* summer() { return &sum_; }
 
  private:
   VectorD2<T, device_is<Device>> px_, pv_, pw_;
-  VectorD1<T, device_is<Device>> state_;
+  VectorD1<T, device_is<Device>> uphill_, state_;
   SumInto<Device, T> sum_;
+  std::size_t contacts_ = 0;
 };
 
 }  // namespace gpusolve::rbd
