@@ -145,3 +145,48 @@ TEST_CASE("GPU collision detection grows its lists and finds what the CPU finds"
   CHECK(cpu.size() == 60 * 59 / 2 + 60);
   CHECK(keys(device::gpu{}) == cpu);
 }
+
+TEST_CASE("GPU collision detection's kept graph finds what launching finds, through moves, growth and a new margin",
+          "[rbd_step][gpu][collision][graphs]") {
+  BodySet<float> s;  // 60 spheres on a plane, first far apart
+  for (std::size_t i = 0; i < 60; ++i)
+    s.add_sphere({3.f * float(i % 5), 3.f * float((i / 5) % 4), 0.55f + 3.f * float(i / 20)}, 0.5f, 1.f);
+  s.add_plane({0, 0, 1}, 0.f);
+  BodyManager<device::gpu, float> m(s);
+  m.syncDeviceFull();
+  CollisionDetection<device::gpu, float> kept, launched;
+  kept.set_graphs(true);
+  Contacts<device::gpu, float, ConeFriction> ck, cl;
+  auto same = [&](float margin) {
+    const std::size_t n = launched.detect(m.device(), cl, margin, 0.5f);
+    REQUIRE(kept.detect(m.device(), ck, margin, 0.5f) == n);
+    Contacts<device::cpu, float, ConeFriction> hk, hl;
+    hk.a = ck.a, hk.b = ck.b, hk.phi0 = ck.phi0, hk.n = ck.n;
+    hl.a = cl.a, hl.b = cl.b, hl.phi0 = cl.phi0, hl.n = cl.n;
+    for (std::size_t i = 0; i < n; ++i) {
+      INFO("contact " << i);
+      REQUIRE(hk.a(i) == hl.a(i));
+      REQUIRE(hk.b(i) == hl.b(i));
+      REQUIRE(hk.phi0(i) == hl.phi0(i));
+      for (int k = 0; k < 3; ++k) REQUIRE(hk.n(i, k) == hl.n(i, k));
+    }
+    return n;
+  };
+  // Sizing run, capture, then the kept graph twice.
+  for (int k = 0; k < 4; ++k) CHECK(same(0.1f) == 20);
+  // The spheres move within their storage: the kept graph sees the new positions.
+  for (std::size_t i = 0; i < 20; ++i) s[i].pos[2] = 0.45f;
+  m.syncDevice();
+  CHECK(same(0.1f) == 20);
+  // All overlap: 1 830 contacts, past the contact list's first capacity (4 per body).
+  for (std::size_t i = 0; i < 60; ++i)
+    s[i].pos = {0.05f * float(i % 5), 0.05f * float((i / 5) % 4), 0.05f + 0.1f * float(i / 20)};
+  m.syncDevice();
+  for (int k = 0; k < 3; ++k) CHECK(same(0.1f) == 60 * 59 / 2 + 60);
+  // Apart again, then a new margin, a new key: every sphere reaches the plane and its neighbours.
+  for (std::size_t i = 0; i < 60; ++i)
+    s[i].pos = {3.f * float(i % 5), 3.f * float((i / 5) % 4), 0.55f + 3.f * float(i / 20)};
+  m.syncDevice();
+  CHECK(same(0.1f) == 20);
+  CHECK(same(10.f) > 200);
+}

@@ -117,6 +117,20 @@ struct DetectionSummary {
   std::uint64_t non_finite;  // NonFiniteKey's minimum: the first body with a NaN or inf in its state
 };
 
+// What the launches of one detection depend on besides the sizes of its
+// scratch stores, which stay put while the body count does: the bodies' and
+// contacts' views (their pointers and sizes), the margin, the friction
+// coefficient and the pair list (pointer and capacity). A captured graph of
+// the detection is launched again while these are the same (GraphReplay).
+template <class View, class ContactView, class T>
+struct DetectionKey {
+  View bodies;
+  ContactView contacts;
+  const std::uint64_t* pairs;
+  std::size_t pair_capacity;
+  T margin, mu;
+};
+
 template <class T>
 struct Summarize {
   const std::uint32_t *pairs, *contacts;
@@ -170,7 +184,8 @@ class CollisionDetection {
         queue_contacts(b, cv, margin, mu, q);
       };
       if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
-        graph_.run(queue, stream);
+        const detail::DetectionKey<View, decltype(cv), T> key{b, cv, grid_.pairs(), grid_.capacity(), margin, mu};
+        graph_.run(key, queue, stream);
       } else {
         queue(stream);
         sized_for_ = n;
@@ -190,8 +205,10 @@ class CollisionDetection {
   }
 
   const UniformGrid<Device, T>& grid() const { return grid_; }
-  // GPU: queue the detection's kernels as one CUDA graph (detail/graph_replay.hpp;
-  // off by default, the World follows SolverSettings::graphs).
+  // GPU: queue the detection's kernels as one CUDA graph (detail/graph_replay.hpp),
+  // captured once and launched again while the bodies, the contacts' storage
+  // and the parameters stay (DetectionKey); off by default, the World follows
+  // SolverSettings::graphs.
   void set_graphs(bool on) { graphs_ = on; }
 
  private:

@@ -2,7 +2,10 @@
 // device pays about a microsecond per kernel instead of a launch each.
 #pragma once
 
+#include <cstring>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
@@ -17,6 +20,10 @@ namespace gpusolve::rbd::detail {
 // instantiation), then launched on `stream`. work must not wait for the device;
 // it may allocate (relaxed capture: storage that grows is allocated at once,
 // outside the graph). On the CPU backend work(stream) runs as it is.
+// run(key, work, stream) keeps the graph instead: while `key` (trivially
+// copyable) has the bytes it had at the last capture, the graph is launched
+// again without capturing; the caller's key must determine every argument of
+// the launches work would queue (sizes, pointers, parameters).
 template <class Device>
 class GraphReplay {
  public:
@@ -28,6 +35,23 @@ class GraphReplay {
     if (exec_) (void)cudaGraphExecDestroy(exec_);  // no throw from a destructor
     if (capture_) (void)cudaStreamDestroy(capture_);
 #endif
+  }
+
+  template <class Key, class Work>
+  void run(const Key& key, Work&& work, stream_t stream) {
+    static_assert(std::is_trivially_copyable_v<Key>, "GraphReplay: a key is compared by its bytes");
+    const auto* bytes = reinterpret_cast<const unsigned char*>(&key);
+    if constexpr (std::is_same_v<Device, device::gpu>) {
+#if GPUSOLVE_HAS_CUDART
+      if (exec_ && key_.size() == sizeof(Key) && std::memcmp(key_.data(), bytes, sizeof(Key)) == 0) {
+        GPUSOLVE_CUDA_CHECK(cudaGraphLaunch(exec_, stream));
+        return;
+      }
+#endif
+    }
+    key_.clear();  // a capture that fails leaves no key
+    run(std::forward<Work>(work), stream);
+    key_.assign(bytes, bytes + sizeof(Key));
   }
 
   template <class Work>
@@ -57,6 +81,7 @@ class GraphReplay {
       } else {
         (void)cudaGraphDestroy(graph);
       }
+      key_.clear();  // this graph is kept only by the run(key, ...) that captured it
       GPUSOLVE_CUDA_CHECK(cudaGraphLaunch(exec_, stream));
 #else
       (void)work, (void)stream;
@@ -72,6 +97,7 @@ class GraphReplay {
   cudaStream_t capture_ = nullptr;
   cudaGraphExec_t exec_ = nullptr;
 #endif
+  std::vector<unsigned char> key_;  // of the graph in exec_, when it may be kept
 };
 
 }  // namespace gpusolve::rbd::detail
