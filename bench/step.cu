@@ -1,7 +1,7 @@
 // The whole time step, per phase and in total, on the GPU and the CPU backend.
 //
 // Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance]
-//                          [--loop auto,auto+graphs,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
+//                          [--loop auto,auto-nograph,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
 //                          [--cpu-max 1000000] [--csv FILE]
 //
 // For each N the shared pile (bench/shared_pile.hpp, ../shared/bench/PILE.md)
@@ -11,13 +11,14 @@
 //   defaults:  World<device::gpu> with SolverSettings{} (APGD, 50 iterations);
 //   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500.
 // --loop: how the GPU runs the solver's iterations between two residual checks:
-//   auto        the library's choice (SolverSettings::persistent_max_contacts);
-//   auto+graphs the same with graphs on: detection as a kept CUDA graph, and
-//               the solver's launches above persistent_max_contacts captured;
-//   persistent  one cooperative kernel at any size;
-//   launches    a kernel launch per phase (persistent_max_contacts 0, graphs off);
-//   graphs      the launches captured into CUDA graphs, and detection too
-//               (persistent_max_contacts 0, graphs on).
+//   auto         the library's choice (SolverSettings::persistent_max_contacts,
+//                detection as a kept CUDA graph: detection_graph);
+//   auto-nograph the same with detection launched kernel by kernel;
+//   persistent   one cooperative kernel at any size;
+//   launches     a kernel launch per phase, detection too (persistent_max_contacts 0,
+//                graphs and detection_graph off);
+//   graphs       the solver's launches captured into CUDA graphs
+//                (persistent_max_contacts 0, graphs on).
 // GPU, after 20 warm-up steps:
 //   step     median of CUDA-event times around each advance(1): what a step loop pays;
 //   queued   advance(steps) timed as one: steps queued back to back, divided by steps;
@@ -73,9 +74,10 @@ SolverSettings<T> settings_for(const std::string& mode, const std::string& loop)
     s.persistent_max_contacts = ~std::size_t(0);
   else if (loop == "launches" || loop == "graphs")
     s.persistent_max_contacts = 0;
-  else if (loop != "auto" && loop != "auto+graphs")
-    throw InvalidArgumentError("bench: unknown loop '" + loop + "' (auto, auto+graphs, persistent, launches, graphs)");
-  s.graphs = loop == "graphs" || loop == "auto+graphs";
+  else if (loop != "auto" && loop != "auto-nograph")
+    throw InvalidArgumentError("bench: unknown loop '" + loop + "' (auto, auto-nograph, persistent, launches, graphs)");
+  s.graphs = loop == "graphs";
+  s.detection_graph = loop != "auto-nograph" && loop != "launches";
   s.friction = T(0.5);  // PILE.md
   if (mode == "jacobi10") {
     s.max_iterations = 10, s.check_every = 10;
@@ -172,7 +174,7 @@ Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const 
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--loop auto,auto+graphs,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
+      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--loop auto,auto-nograph,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
       "[--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

@@ -71,7 +71,7 @@ TEST_CASE("GPU World: CUDA graphs replay exactly the kernels launched one by one
     using Method = decltype(method);
     auto set = pile<float>(5, 4);
     SolverSettings<float> s = settings();
-    s.graphs = graphs;
+    s.graphs = s.detection_graph = graphs;
     s.persistent_max_contacts = 0;  // the persistent kernel would take precedence over graphs
     s.check_every = check_every;  // 50: one graph per solve; 7: a graph per run between checks, the last one short
     World<device::gpu, float, ConeFriction, Method> w(set, s);

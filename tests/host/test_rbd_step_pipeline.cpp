@@ -79,9 +79,9 @@ TEST_CASE("queued steps: the GPU's loop settings (graphs, persistent) leave the 
   auto set_a = pile<double>(3, 2), set_b = set_a;
   SolverSettings<double> s = pile_settings();
   s.check_every = 7;  // runs of iterations between checks, the last one short
-  s.graphs = true, s.persistent_max_contacts = ~std::size_t(0);
+  s.graphs = s.detection_graph = true, s.persistent_max_contacts = ~std::size_t(0);
   World<device::cpu, double> a(set_a, s);
-  s.graphs = false, s.persistent_max_contacts = 0;
+  s.graphs = s.detection_graph = false, s.persistent_max_contacts = 0;
   World<device::cpu, double> b(set_b, s);
   a.advance(20), b.advance(20);
   CHECK(state(a) == state(b));

@@ -113,7 +113,7 @@ class World {
     StepStats<T> stats;
     try {
       if (timing_) slot.marks.mark(0, stream_);
-      detection_.set_graphs(s.graphs);
+      detection_.set_graphs(s.detection_graph);
       detection_.detect(bodies, contacts_, s.margin, s.friction, stream_);
       if (timing_) slot.marks.mark(1, stream_);
       constexpr bool own_integration = !integrates<solver_type>::value;  // else the solver moves the bodies

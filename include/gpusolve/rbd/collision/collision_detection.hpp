@@ -208,7 +208,7 @@ class CollisionDetection {
   // GPU: queue the detection's kernels as one CUDA graph (detail/graph_replay.hpp),
   // captured once and launched again while the bodies, the contacts' storage
   // and the parameters stay (DetectionKey); off by default, the World follows
-  // SolverSettings::graphs.
+  // SolverSettings::detection_graph.
   void set_graphs(bool on) { graphs_ = on; }
 
  private:

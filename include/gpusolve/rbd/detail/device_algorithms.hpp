@@ -18,6 +18,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/core/error.hpp"
+#include "gpusolve/core/launch.hpp"
 
 #if GPUSOLVE_HAS_NVCC
 #include <cub/device/device_radix_sort.cuh>
@@ -46,6 +47,14 @@ struct PlusOp {
   GPUSOLVE_HD T operator()(const T& a, const T& b) const {
     return a + b;
   }
+};
+
+// values[i] = f(i): the first pass of a GPU reduction.
+template <class F, class T>
+struct EvaluateInto {
+  F f;
+  T* values;
+  GPUSOLVE_HD void operator()(std::size_t i) const { values[i] = f(i); }
 };
 
 template <class Device>
@@ -116,14 +125,20 @@ class DeviceAlgorithms {
     }
   }
 
-  // *out = init op f(0) op ... op f(n - 1), left in the backend's memory.
+  // *out = init op f(0) op ... op f(n - 1), left in the backend's memory. On
+  // the GPU a kernel one thread per index writes f(i) into a kept buffer and
+  // CUB reduces that: with f fused into CUB's reduction a few blocks evaluate
+  // many indices per thread, one after another, and reductions of the bodies'
+  // state (10 000 bodies) took 40 to 50 us each on an H200 (ncu), most of a
+  // step's reductions.
   template <class F, class T, class Op>
   void reduce_into(std::size_t n, F f, T init, Op op, T* out, stream_t stream) {
     if constexpr (gpu) {
 #if GPUSOLVE_HAS_NVCC
-      const thrust::counting_iterator<std::size_t> first(0);
+      T* values = values_for<T>(n);
+      launch(Device{}, n, EvaluateInto<F, T>{f, values}, stream);
       run([&](void* temp, std::size_t& bytes) {
-        return cub::DeviceReduce::TransformReduce(temp, bytes, first, out, items(n), op, f, init, stream);
+        return cub::DeviceReduce::Reduce(temp, bytes, values, out, items(n), op, init, stream);
       });
 #else
       unsupported();
@@ -147,10 +162,10 @@ class DeviceAlgorithms {
   void reserve_reduce(std::size_t n, F f, T init, Op op, T* out) {
     if constexpr (gpu) {
 #if GPUSOLVE_HAS_NVCC
-      const thrust::counting_iterator<std::size_t> first(0);
+      (void)f;
+      T* values = values_for<T>(n);
       std::size_t bytes = 0;
-      GPUSOLVE_CUDA_CHECK(
-          cub::DeviceReduce::TransformReduce(nullptr, bytes, first, out, items(n), op, f, init, stream_t{}));
+      GPUSOLVE_CUDA_CHECK(cub::DeviceReduce::Reduce(nullptr, bytes, values, out, items(n), op, init, stream_t{}));
       grow(bytes);
 #else
       unsupported();
@@ -161,7 +176,7 @@ class DeviceAlgorithms {
   }
 
   // Bytes of temporary storage held (GPU; stays put once warm).
-  std::size_t scratch_bytes() const { return temp_.size_x(); }
+  std::size_t scratch_bytes() const { return temp_.size_x() + values_.size_x(); }
 
  private:
   static int items(std::size_t n) {
@@ -179,11 +194,18 @@ class DeviceAlgorithms {
   void grow(std::size_t bytes) {
     if (temp_.size_x() < bytes) temp_.resize(bytes + bytes / 2);
   }
+  // The kept buffer of a reduction's values, n of them (device allocations are aligned for any T).
+  template <class T>
+  T* values_for(std::size_t n) {
+    const std::size_t bytes = (n > 0 ? n : 1) * sizeof(T);
+    if (values_.size_x() < bytes) values_.resize(bytes + bytes / 2);
+    return reinterpret_cast<T*>(values_.data());
+  }
   [[noreturn]] static void unsupported() {
     throw UnsupportedError("gpusolve: device-wide algorithms on device::gpu need this translation unit compiled by nvcc");
   }
 
-  VectorD1<std::uint8_t, device_is<Device>> temp_;
+  VectorD1<std::uint8_t, device_is<Device>> temp_, values_;  // CUB's temporary storage; a reduction's values
   std::vector<std::size_t> order_;  // host sort's permutation
 };
 

@@ -54,14 +54,20 @@ struct SolverSettings {
   // the other methods ignore it. max_iterations is shared among the substeps.
   std::size_t substeps = 4;
   bool throw_on_divergence = false;  // solve() throws DivergenceError instead of reporting it
-  // GPU: collision detection and, where the persistent kernel is not used
-  // (persistent_max_contacts), the Jacobi-family solvers' runs of iterations
-  // between two residual checks are captured into CUDA graphs, updated in place
-  // and replayed (detail/graph_replay.hpp): the same kernels in the same order.
-  // Off by default: capturing anew every step (the contact count changes the
-  // kernels' arguments) cost more than the launches it saved on the shared pile
-  // on an H200 (bench/step.cu, README: 1.90 against 2.31 ms per step at the
-  // defaults for 10 000 spheres). The CPU ignores it.
+  // GPU: collision detection runs as one CUDA graph, captured once and launched
+  // again while the bodies, the contacts' storage, the margin and the friction
+  // stay (CollisionDetection::set_graphs; its kernels read the step's counts
+  // from device memory, so a contact count that changes does not recapture).
+  // On the shared pile on an H200 (bench/step.cu, README) it took 0.04 to 0.06
+  // ms off a step at the defaults from 1 000 to 100 000 spheres. The CPU ignores it.
+  bool detection_graph = true;
+  // GPU: where the persistent kernel is not used (persistent_max_contacts), the
+  // Jacobi-family solvers' runs of iterations between two residual checks are
+  // captured into CUDA graphs, updated in place and replayed
+  // (detail/graph_replay.hpp): the same kernels in the same order. Off by
+  // default: a run's arguments change every step (the contact count), and
+  // capturing anew cost more than the launches it saved (on the 1 000 000-sphere
+  // pile on an H200, 16.3 against 15.9 ms per step at the defaults). The CPU ignores it.
   bool graphs = false;
   // GPU: the Jacobi-family solvers (and substepping through them) run each run
   // of iterations between two residual checks as one cooperative kernel, the
