@@ -49,21 +49,25 @@ def main(argv):
     def label(r):
         return r["backend"] + " " + r["mode"] + ("" if r["backend"] == "cpu" else ", " + loop(r))
 
-    def style(name):
-        if name.startswith("cpu"):
-            return "--"
-        return ":" if name.endswith(("launches", "graphs on")) else "-"
+    modes = sorted({r["mode"] for r in rows})
+    colour = {m: f"C{k}" for k, m in enumerate(modes)}  # a colour per mode, a line style per loop
+    dashes = {"auto": "-", "auto-nograph": "--", "persistent": "-", "launches": ":", "graphs": "-.", "graphs on": "-.",
+              "graphs off": ":"}
 
-    for name, pts in sorted(series(rows, label, "ms_step_median").items()):
-        left.plot([p[0] for p in pts], [p[1] for p in pts], style(name), marker="o", label=name)
+    def draw(ax, rows_, value, prefix=""):
+        for name, pts in sorted(series(rows_, label, value).items()):
+            r = next(r for r in rows_ if label(r) == name)
+            ls = "-." if r["backend"] == "cpu" else dashes.get(loop(r), "-")
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], ls, color=colour[r["mode"]],
+                    marker="s" if prefix.startswith("detection") else "o", label=prefix + name)
+
+    draw(left, rows, "ms_step_median")
     finish_axes(left, "spheres (the shared pile of PILE.md, after it fell for a while)",
                 "ms per whole step (median)", "time per step")
 
     gpu = [r for r in rows if r["backend"] == "gpu" and r["mode"] in ("jacobi10", "defaults")]
     for phase in ("ms_detection", "ms_solve"):
-        for name, pts in sorted(series(gpu, label, phase).items()):
-            right.plot([p[0] for p in pts], [p[1] for p in pts], "-" if phase == "ms_solve" else "--", marker="o",
-                       label=f'{phase[3:]}: {name[4:]}')
+        draw(right, gpu, phase, phase[3:] + ": ")
     finish_axes(right, "spheres", "ms per step (median, CUDA events)", "GPU phases")
     threads = rows[0].get("cpu_threads")
     threads = f"{threads} OpenMP threads" if threads else "thread count not recorded"
