@@ -187,7 +187,8 @@ struct WritePairs {
 // Finds every pair of spheres (not removed) whose surfaces are closer than a
 // margin, on the backend of the bodies. The cell size is the largest sphere
 // diameter plus the margin, so near spheres always sit in neighbouring cells.
-// queue() only queues device work: the pair count stays in the backend's memory
+// queue_grid() builds the grid for kernels that walk it (collision detection);
+// queue() also lists the pairs. Both only queue device work: the pair count stays in the backend's memory
 // until a caller reads it; the list has a capacity that grows geometrically
 // and is never silently cut (a caller that finds count > capacity grows it
 // with reserve() and queues again). Scratch storage is kept and reused.
@@ -198,34 +199,43 @@ class UniformGrid {
   template <class E>
   using D1 = VectorD1<E, device_is<Device>>;
 
-  // Queues the grid's rebuild and the pair list. Afterwards, in stream order,
-  // pair_count() holds the number of pairs and cell() the cell size (+inf when
-  // a radius or the margin is not finite); when the count is at most
-  // capacity(), pairs() lists them sorted by (a, b), a < b: pair_key order,
-  // those of sphere i at [pair_end(i) - pair_count_of(i), pair_end(i)).
-  void queue(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}) {
+  using Walk = detail::NeighbourWalk<View, T>;
+
+  // Queues the grid's rebuild. Afterwards, in stream order, cell() holds the
+  // cell size (+inf when a radius or the margin is not finite) and walk(b,
+  // margin) visits each sphere's near neighbours in kernels (NeighbourWalk).
+  Walk queue_grid(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}) {
     const View b = bodies.view();
     n_ = b.size();
-    if (n_ == 0) return;
     std::uint32_t buckets = 1;
     while (buckets < 2 * n_ && buckets < (1u << 30)) buckets <<= 1;
     int bits = 1;
     while ((std::size_t(1) << bits) <= buckets) ++bits;  // the sentinel `buckets` included
-    for (D1<std::uint32_t>* v : {&hash_, &sorted_hash_, &index_, &sorted_index_, &count_, &offset_})
-      detail::ensure_size(*v, n_);
+    for (D1<std::uint32_t>* v : {&hash_, &sorted_hash_, &index_, &sorted_index_}) detail::ensure_size(*v, n_);
     detail::ensure_size(start_, buckets);
     detail::ensure_size(end_, buckets);
     if (cell_.size_x() == 0) cell_.resize(1);
-    if (pairs_.size_x() < 4 * n_) reserve(4 * n_);  // a pile has about 6 per sphere: at most one regrowth
-
+    const Walk walk{b, cell_.data(), buckets - 1, margin, sorted_index_.data(), start_.data(), end_.data()};
+    if (n_ == 0) return walk;
     const Device dev{};
     algorithms_.max_into(n_, detail::SphereReach<View, T>{b, margin}, T(0), cell_.data(), stream);
     launch(dev, n_, detail::HashSpheres<View, T>{b, cell_.data(), buckets - 1, hash_.data(), index_.data()}, stream);
     // Stable, so bodies in one bucket stay in index order on every backend.
     algorithms_.sort_pairs(hash_.data(), sorted_hash_.data(), index_.data(), sorted_index_.data(), n_, bits, stream);
     launch(dev, buckets, detail::BucketBounds{sorted_hash_.data(), n_, start_.data(), end_.data()}, stream);
-    using Walk = detail::NeighbourWalk<View, T>;
-    const Walk walk{b, cell_.data(), buckets - 1, margin, sorted_index_.data(), start_.data(), end_.data()};
+    return walk;
+  }
+
+  // Queues the grid's rebuild and the pair list. Afterwards, in stream order,
+  // pair_count() holds the number of pairs and cell() the cell size; when the
+  // count is at most capacity(), pairs() lists them sorted by (a, b), a < b:
+  // pair_key order, those of sphere i at [pair_end(i) - pair_count_of(i), pair_end(i)).
+  void queue(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}) {
+    const Walk walk = queue_grid(bodies, margin, stream);
+    if (n_ == 0) return;
+    for (D1<std::uint32_t>* v : {&count_, &offset_}) detail::ensure_size(*v, n_);
+    if (pairs_.size_x() < 4 * n_) reserve(4 * n_);  // a pile has about 6 per sphere: at most one regrowth
+    const Device dev{};
     launch(dev, n_, detail::CountPairs<Walk>{walk, count_.data()}, stream);
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n_, stream);
     launch(dev, n_, detail::WritePairs<Walk>{walk, offset_.data(), count_.data(), pairs_.data(), pairs_.size_x()},

@@ -1,7 +1,7 @@
-// Collision detection where the bodies live: the broad phase for sphere pairs,
-// every active sphere against the few obstacles (planes, boxes), the narrow
-// phase, and the contacts written by a count pass, a scan and a write pass,
-// all queued on one stream; the host reads the counts once per step.
+// Collision detection where the bodies live: the broad phase's grid walked for
+// sphere pairs, every active sphere against the few obstacles (planes, boxes),
+// the narrow phase, and the contacts written by a count pass, a scan and a
+// write pass, all queued on one stream; the host reads the counts once per step.
 #pragma once
 
 #include <cstddef>
@@ -32,50 +32,41 @@ struct IsObstacle {  // a plane or box taking part
   GPUSOLVE_HD bool operator()(std::uint32_t i) const { return b.shape[i] != sphere && b.status[i] != removed; }
 };
 
-// Visits the contacts of sphere i as body a, in increasing order of body b:
-// its grid pairs (a fixed sphere only with active ones) merged with the
-// obstacles (active spheres only). visit(b, geometry) for every gap < margin.
-// A pair list that overflowed its capacity is read as empty (the caller repeats).
+// The contacts of sphere i as body a: its grid neighbours j > i (a fixed
+// sphere only with active ones) and the obstacles (active spheres only),
+// those whose gap is below the margin. visit(j) meets them in the grid's
+// order; geometry(i, j) is their contact geometry.
 template <class View, class T>
 struct ContactWalk {
   View b;
   T margin;
-  const std::uint64_t* pairs;       // pair keys sorted
-  const std::uint32_t* pair_end;    // pairs of body i are [pair_end[i] - pair_count[i], pair_end[i])
-  const std::uint32_t* pair_count;
-  std::size_t pair_capacity;
+  NeighbourWalk<View, T> grid;
   const std::uint32_t* obstacles;       // sorted body indices
   const std::uint32_t* obstacle_count;  // their number
+
+  GPUSOLVE_HD ContactGeometry<T> geometry(std::size_t i, std::uint32_t j) const {
+    const BodyOffsets<T> off(b);
+    const math::Vector3<T> pa(math::Vector3Global<T>(b.pos, off.v3, i));
+    const math::Vector3<T> pb(math::Vector3Global<T>(b.pos, off.v3, j));
+    if (b.shape[j] == sphere) return sphere_sphere(pa, b.radius[i], pb, b.radius[j]);
+    if (b.shape[j] == plane) {
+      const math::Vector3<T> n(b.shape_param(j, 0), b.shape_param(j, 1), b.shape_param(j, 2));
+      return sphere_plane(pa, b.radius[i], n, b.shape_param(j, 3), pb);
+    }
+    const math::Vector3<T> h(b.shape_param(j, 0), b.shape_param(j, 1), b.shape_param(j, 2));
+    return sphere_box(pa, b.radius[i], pb, math::Matrix3x3<T>(math::Matrix3x3Global<T>(b.R, off.m9, j)), h);
+  }
 
   template <class F>
   GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
     if (!on_grid(b, i)) return;
     const bool active_a = b.status[i] == active;
-    const BodyOffsets<T> off(b);
-    const math::Vector3<T> pa(math::Vector3Global<T>(b.pos, off.v3, i));
-    const T Ra = b.radius[i];
-    const bool listed = pair_end[i] <= pair_capacity;
-    std::uint32_t p = listed ? pair_end[i] - pair_count[i] : 0;
-    const std::uint32_t pe = listed ? pair_end[i] : 0;
-    std::uint32_t k = 0;
-    const std::uint32_t ke = active_a ? *obstacle_count : 0;
-    while (p < pe || k < ke) {
-      const bool take_pair = k >= ke || (p < pe && pair_b(pairs[p]) < obstacles[k]);
-      const std::uint32_t j = take_pair ? pair_b(pairs[p++]) : obstacles[k++];
-      if (take_pair && !active_a && b.status[j] != active) continue;
-      const math::Vector3<T> pb(math::Vector3Global<T>(b.pos, off.v3, j));
-      ContactGeometry<T> g;
-      if (b.shape[j] == sphere) {
-        g = sphere_sphere(pa, Ra, pb, b.radius[j]);
-      } else if (b.shape[j] == plane) {
-        const math::Vector3<T> n(b.shape_param(j, 0), b.shape_param(j, 1), b.shape_param(j, 2));
-        g = sphere_plane(pa, Ra, n, b.shape_param(j, 3), pb);
-      } else {
-        const math::Vector3<T> h(b.shape_param(j, 0), b.shape_param(j, 1), b.shape_param(j, 2));
-        g = sphere_box(pa, Ra, pb, math::Matrix3x3<T>(math::Matrix3x3Global<T>(b.R, off.m9, j)), h);
-      }
-      if (g.gap < margin) visit(j, g);
-    }
+    grid(i, [&](std::uint32_t j) {
+      if ((active_a || b.status[j] == active) && geometry(i, j).gap < margin) visit(j);
+    });
+    if (!active_a) return;
+    for (std::uint32_t k = 0; k < *obstacle_count; ++k)
+      if (geometry(i, obstacles[k]).gap < margin) visit(obstacles[k]);
   }
 };
 
@@ -85,13 +76,16 @@ struct CountContacts {
   std::uint32_t* count;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     std::uint32_t c = 0;
-    walk(i, [&c](std::uint32_t, const auto&) { ++c; });
+    walk(i, [&c](std::uint32_t) { ++c; });
     count[i] = c;
   }
 };
 
-// Writes sphere i's contacts at [offset[i] - count[i], offset[i]), unless that
-// passes the contacts' capacity (their view's size): the caller grows and repeats.
+// Writes sphere i's contacts at [offset[i] - count[i], offset[i]) in
+// increasing order of body b, unless that passes the contacts' capacity (their
+// view's size): the caller grows and repeats. The walk's bodies are sorted in
+// place in the b column first (a sphere has few), so the list comes out in
+// (a, b) order without a global sort.
 template <class Walk, class ContactView, class T>
 struct WriteContacts {
   Walk walk;
@@ -101,43 +95,51 @@ struct WriteContacts {
   T mu;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     if (offset[i] > contacts.size()) return;
-    std::uint32_t o = offset[i] - count[i];
-    walk(i, [&](std::uint32_t j, const ContactGeometry<T>& g) {
-      contacts.set(o++, std::uint32_t(i), j, g.n, g.ra, g.rb, g.gap, mu);
-    });
+    const std::uint32_t first = offset[i] - count[i], last = offset[i];
+    std::uint32_t o = first;
+    walk(i, [&](std::uint32_t j) { contacts.b[o++] = j; });
+    for (std::uint32_t p = first + 1; p < last; ++p) {  // insertion sort
+      const std::uint32_t j = contacts.b[p];
+      std::uint32_t q = p;
+      for (; q > first && contacts.b[q - 1] > j; --q) contacts.b[q] = contacts.b[q - 1];
+      contacts.b[q] = j;
+    }
+    for (std::uint32_t p = first; p < last; ++p) {
+      const std::uint32_t j = contacts.b[p];
+      const ContactGeometry<T> g = walk.geometry(i, j);
+      contacts.set(p, std::uint32_t(i), j, g.n, g.ra, g.rb, g.gap, mu);
+    }
   }
 };
 
-// What the host reads once per detection: the counts it must size for, and
+// What the host reads once per detection: the count it must size for, and
 // the cell size (not finite: a radius or the margin is not finite).
 template <class T>
 struct DetectionSummary {
-  std::uint32_t pairs, contacts;
+  std::uint32_t contacts;
   T cell;
   std::uint64_t non_finite;  // NonFiniteKey's minimum: the first body with a NaN or inf in its state
 };
 
 // What the launches of one detection depend on besides the sizes of its
 // scratch stores, which stay put while the body count does: the bodies' and
-// contacts' views (their pointers and sizes), the margin, the friction
-// coefficient and the pair list (pointer and capacity). A captured graph of
-// the detection is launched again while these are the same (GraphReplay).
+// contacts' views (their pointers and sizes), the margin and the friction
+// coefficient. A captured graph of the detection is launched again while
+// these are the same (GraphReplay).
 template <class View, class ContactView, class T>
 struct DetectionKey {
   View bodies;
   ContactView contacts;
-  const std::uint64_t* pairs;
-  std::size_t pair_capacity;
   T margin, mu;
 };
 
 template <class T>
 struct Summarize {
-  const std::uint32_t *pairs, *contacts;
+  const std::uint32_t* contacts;
   const T* cell;
   const std::uint64_t* non_finite;
   DetectionSummary<T>* out;
-  GPUSOLVE_HD void operator()(std::size_t) const { *out = DetectionSummary<T>{*pairs, *contacts, *cell, *non_finite}; }
+  GPUSOLVE_HD void operator()(std::size_t) const { *out = DetectionSummary<T>{*contacts, *cell, *non_finite}; }
 };
 
 }  // namespace detail
@@ -179,12 +181,9 @@ class CollisionDetection {
     for (;;) {
       contacts.resize(contacts.capacity());  // written up to the capacity, trimmed below
       const auto cv = contacts.view();
-      auto queue = [&](stream_t q) {
-        grid_.queue(bodies, margin, q);
-        queue_contacts(b, cv, margin, mu, q);
-      };
+      auto queue = [&](stream_t q) { queue_contacts(bodies, cv, margin, mu, q); };
       if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
-        const detail::DetectionKey<View, decltype(cv), T> key{b, cv, grid_.pairs(), grid_.capacity(), margin, mu};
+        const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, mu};
         graph_.run(key, queue, stream);
       } else {
         queue(stream);
@@ -194,17 +193,14 @@ class CollisionDetection {
       if (s.non_finite != ~std::uint64_t(0)) throw detail::non_finite_state(s.non_finite);
       if (!(s.cell <= std::numeric_limits<T>::max()))
         throw InvalidArgumentError("gpusolve: CollisionDetection: a sphere radius or the margin is not finite");
-      const bool pairs_short = s.pairs > grid_.capacity();
-      if (pairs_short) grid_.reserve(s.pairs);  // then the contact count is not known yet
-      if (!pairs_short && s.contacts <= contacts.capacity()) {
+      if (s.contacts <= contacts.capacity()) {
         contacts.resize(s.contacts);
         return s.contacts;
       }
-      if (!pairs_short) contacts.resize(s.contacts);
+      contacts.resize(s.contacts);
     }
   }
 
-  const UniformGrid<Device, T>& grid() const { return grid_; }
   // GPU: queue the detection's kernels as one CUDA graph (detail/graph_replay.hpp),
   // captured once and launched again while the bodies, the contacts' storage
   // and the parameters stay (DetectionKey); off by default, the World follows
@@ -213,21 +209,21 @@ class CollisionDetection {
 
  private:
   template <class CView>
-  void queue_contacts(const View& b, const CView& c, T margin, T mu, stream_t stream) {
+  void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, T mu, stream_t stream) {
+    const View b = bodies.view();
     const std::size_t n = b.size();
     const Device dev{};
+    const auto grid = grid_.queue_grid(bodies, margin, stream);
     algorithms_.reduce_into(n, detail::NonFiniteKey<View>{b}, ~std::uint64_t(0), detail::MinOp{}, non_finite_.data(),
                             stream);
     algorithms_.select_indices(n, detail::IsObstacle<View>{b}, obstacles_.data(), obstacle_count_.data(), stream);
     using Walk = detail::ContactWalk<View, T>;
-    const Walk walk{b,          margin,        grid_.pairs(),      grid_.pair_end(), grid_.pair_count_of(),
-                    grid_.capacity(), obstacles_.data(), obstacle_count_.data()};
+    const Walk walk{b, margin, grid, obstacles_.data(), obstacle_count_.data()};
     launch(dev, n, detail::CountContacts<Walk>{walk, count_.data()}, stream);
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
     launch(dev, n, detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), c, mu}, stream);
-    launch(dev, 1,
-           detail::Summarize<T>{grid_.pair_count(), offset_.data() + (n - 1), grid_.cell(), non_finite_.data(),
-                                summary_.data()}, stream);
+    launch(dev, 1, detail::Summarize<T>{offset_.data() + (n - 1), grid_.cell(), non_finite_.data(), summary_.data()},
+           stream);
   }
 
   UniformGrid<Device, T> grid_;
