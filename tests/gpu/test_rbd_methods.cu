@@ -1,5 +1,5 @@
 // Every solver method on the GPU against the CPU backend: contact colouring,
-// coloured Gauss-Seidel, APGD and substepping solves and World steps with the cone model.
+// coloured Gauss-Seidel, APGD, substepping and APGD with CG steps: solves and World steps with the cone model.
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -119,20 +119,30 @@ TEST_CASE("GPU APGD converges to the CPU backend's velocities", "[rbd_methods][g
   CHECK(max_abs_diff(gpu, cpu) < 1e-3f);  // two solutions within 1e-5 m/s residual of one LCP
 }
 
+namespace {
+
+// The velocities after three converged World steps of Method on a cone-friction pile.
+template <class Method, class Device>
+std::vector<float> converged_steps(Device) {
+  auto set = pile<float>(3, 3);
+  SolverSettings<float> s;
+  s.friction = 0.4f, s.margin = 0.02f;
+  s.tolerance = 1e-5f, s.max_iterations = 20000, s.check_every = 10;  // converged, as in the APGD test
+  World<Device, float, ConeFriction, Method> w(set, s);
+  for (int i = 0; i < 3; ++i) REQUIRE(w.step().solver.status == SolverStatus::converged);
+  Bodies<device::cpu, float> host;
+  host = w.bodies();
+  return velocities(host);
+}
+
+}  // namespace
+
 TEST_CASE("GPU substepping World steps converge to the CPU backend's", "[rbd_methods][gpu]") {
-  auto run = [&](auto device) {
-    using Device = decltype(device);
-    auto set = pile<float>(3, 3);
-    SolverSettings<float> s;
-    s.friction = 0.4f, s.margin = 0.02f;
-    s.tolerance = 1e-5f, s.max_iterations = 20000, s.check_every = 10;  // converged, as in the APGD test
-    World<Device, float, ConeFriction, Substepping<>> w(set, s);
-    for (int i = 0; i < 3; ++i) REQUIRE(w.step().solver.status == SolverStatus::converged);
-    Bodies<device::cpu, float> host;
-    host = w.bodies();
-    return velocities(host);
-  };
-  const auto cpu = run(device::cpu{});
-  const auto gpu = run(device::gpu{});
-  CHECK(max_abs_diff(gpu, cpu) < 3e-3f);
+  const auto cpu = converged_steps<Substepping<>>(device::cpu{});
+  CHECK(max_abs_diff(converged_steps<Substepping<>>(device::gpu{}), cpu) < 3e-3f);
+}
+
+TEST_CASE("GPU AcceleratedCG World steps converge to the CPU backend's", "[rbd_methods][gpu]") {
+  const auto cpu = converged_steps<AcceleratedCG>(device::cpu{});
+  CHECK(max_abs_diff(converged_steps<AcceleratedCG>(device::gpu{}), cpu) < 3e-3f);
 }

@@ -21,6 +21,7 @@
 #include "gpusolve/memory/cuda_host_allocator.hpp"
 #include "gpusolve/memory/standard_allocator.hpp"
 #include "gpusolve/rbd/integration/integrate.hpp"
+#include "gpusolve/rbd/solvers/accelerated_cg.hpp"
 #include "gpusolve/rbd/solvers/coloured_gauss_seidel.hpp"
 #include "gpusolve/rbd/solvers/jacobi.hpp"
 #include "gpusolve/rbd/solvers/solver.hpp"
