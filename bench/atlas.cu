@@ -3,7 +3,7 @@
 // penetration and the LCP residual it bought, and whether each step converged.
 //
 // Run: gpusolve_bench_atlas --scene pile|column [--n 10000,100000] [--ratios 1,100,1000]
-//        [--methods gauss-seidel,jacobi,apgd,substepping] [--budgets default,it10,it20,tol0.02] [--margins 0.1]
+//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,tol0.02] [--margins 0.1]
 //        [--dts 0.0025] [--steps N] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, PILE.md), N spheres dropped into
@@ -128,7 +128,9 @@ Result dispatch(const Run& r) {
   if (r.method == "jacobi") return run<rbd::Jacobi<rbd::Gather>>(r);
   if (r.method == "apgd") return run<rbd::AcceleratedJacobi<rbd::Gather>>(r);
   if (r.method == "substepping") return run<rbd::Substepping<>>(r);
-  throw InvalidArgumentError("atlas: unknown method '" + r.method + "' (gauss-seidel, jacobi, apgd or substepping)");
+  if (r.method == "apgd-cg") return run<rbd::AcceleratedCG>(r);
+  throw InvalidArgumentError("atlas: unknown method '" + r.method +
+                             "' (gauss-seidel, jacobi, apgd, substepping or apgd-cg)");
 }
 
 const char* verdict(const Run& r, const Result& x) {

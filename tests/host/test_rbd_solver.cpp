@@ -339,4 +339,5 @@ TEST_CASE("bad solver settings give InvalidArgumentError naming the field, for e
   check_bad_settings<ColouredGaussSeidel>();
   check_bad_settings<AcceleratedJacobi<Gather>>();
   check_bad_settings<Substepping<>>();
+  check_bad_settings<AcceleratedCG>();
 }
