@@ -58,7 +58,7 @@ struct SolverSettings {
   // again while the bodies, the contacts' storage, the margin and the friction
   // stay (CollisionDetection::set_graphs; its kernels read the step's counts
   // from device memory, so a contact count that changes does not recapture).
-  // On the shared pile on an H200 (bench/step.cu, README) it took 0.04 to 0.06
+  // On the shared pile on an H200 (bench/step.cu, README) it took 0.03 to 0.05
   // ms off a step at the defaults from 1 000 to 100 000 spheres. The CPU ignores it.
   bool detection_graph = true;
   // GPU: where the persistent kernel is not used (persistent_max_contacts), the
