@@ -137,7 +137,7 @@ struct CalcNextPhi {
     error(i, e);
     for (std::size_t r = 0; r < Model::rows; ++r) rhs(i, r) = e[r];
   }
-  // Contact i's error at the velocities `it` gives (detail/iterate.hpp), computed without writing it.
+  // Contact i's error at the velocities `it` gives (iterate.hpp), computed without writing it.
   template <class Iterate = detail::CurrentIterate<T>>
   GPUSOLVE_HD void error(std::size_t i, T* e, const Iterate& it = Iterate{}) const {
     const detail::Frame<T, Model, CV> f(c, i);
@@ -181,7 +181,7 @@ struct ResolveCollisions {
     update(i, e);
   }
   // The update from contact i's error e, starting from the impulse `it` gives
-  // (detail/iterate.hpp). The new x is stored only after the body response was
+  // (iterate.hpp). The new x is stored only after the body response was
   // computed and sent: the compiler may not move a load past a store (the views
   // might alias), so storing first would make the response's loads (offsets,
   // masses, inertias) wait for it instead of overlapping.
