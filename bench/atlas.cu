@@ -2,7 +2,7 @@
 // solver method and iteration budget: time per step against the largest
 // penetration and the LCP residual it bought, and whether each step converged.
 //
-// Run: gpusolve_bench_atlas --scene pile|column [--n 10000,100000] [--ratios 1,100,1000]
+// Run: gpusolve_bench_atlas --scene pile|column|hopper [--n 10000,100000] [--ratios 1,100,1000]
 //        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,tol0.02] [--margins 0.1]
 //        [--dts 0.0025] [--steps N] [--csv FILE]
 //
@@ -10,10 +10,15 @@
 //         an open box; 1 200 steps for N <= 10 000, else 900 (PILE.md's counts).
 // column: ten spheres stacked (--n N: N spheres; a tall stack is --n 40 --ratios 1),
 //         masses alternating 1 and the ratio; 2 000 steps.
+// hopper: the thesis's hopper scene (examples/scene_hopper.hpp, 9 857 spheres,
+//         friction 0.1 as in the scene) settled with its outlet closed: 5 000
+//         steps at the library's defaults, once, then each run starts from
+//         that state; 600 steps.
 // Budgets: "default" is SolverSettings{} as a user gets it (tolerance, iteration
 // cap and residual checks as shipped); "itK" runs exactly K iterations per step,
 // the residual measured once after the last; "tolX" iterates to tolerance X
-// (cap 2 000, checked every 10). Every run: friction 0.5, the cone model.
+// (cap 2 000, checked every 10). Every run: the cone model, friction 0.5 (the
+// hopper: 0.1).
 // Measured, over the last third of the steps: time per whole step (detection,
 // solve, integration and World's statistics, what a user's loop pays) with CUDA
 // events around World::step, mean and median; mean iterations; the median final
@@ -28,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "../examples/scene_hopper.hpp"
 #include "gpusolve/rbd/world.hpp"
 #include "shared_pile.hpp"
 #include "timing.hpp"
@@ -41,7 +47,7 @@ using rbd::SolverSettings;
 
 struct Options {
   std::string scene = "pile";
-  std::vector<std::size_t> n;  // empty: the scene's (pile 10 000, column 10)
+  std::vector<std::size_t> n;  // empty: the scene's (pile 10 000, column 10, hopper 9 857)
   std::vector<double> ratios{1, 100, 1000};
   std::vector<std::string> methods{"gauss-seidel", "jacobi"};
   std::vector<std::string> budgets{"default"};
@@ -64,10 +70,12 @@ struct Result {
   bool fell = false;  // a column whose top sphere left its place by more than a radius
 };
 
+constexpr double hopper_friction = 0.1;  // the scene's (examples/scene_hopper.hpp)
+
 SolverSettings<T> settings_for(const Run& r) {
   SolverSettings<T> s;
   s.dt = T(r.dt);
-  s.friction = T(0.5);
+  s.friction = T(r.scene == "hopper" ? hopper_friction : 0.5);
   if (r.margin >= 0) s.margin = T(r.margin);
   if (r.budget.rfind("it", 0) == 0) {
     s.max_iterations = std::stoul(r.budget.substr(2));
@@ -83,9 +91,40 @@ SolverSettings<T> settings_for(const Run& r) {
   return s;
 }
 
+// The hopper of n spheres after its warm-up with the outlet closed, built and settled once.
+const rbd::BodySet<T>& settled_hopper(std::size_t n) {
+  static std::size_t built = 0;
+  static rbd::BodySet<T> set;
+  if (built == n) return set;
+  scenes::Options o;
+  o.scene = "hopper";
+  o.scale = long(n);
+  o.resolve(scenes::Hopper<T>::defaults());
+  scenes::Hopper<T> hopper(o);
+  set = rbd::BodySet<T>();
+  hopper.build(set);
+  SolverSettings<T> s;
+  s.friction = T(hopper_friction);
+  rbd::World<Dev, T> world(set, s);
+  std::printf("... hopper n=%zu: settling %ld steps at the defaults, outlet closed\n", n, hopper.warmup());
+  std::fflush(stdout);
+  world.advance(std::size_t(hopper.warmup()));
+  const rbd::StepStats<T> st = world.latest_stats();
+  world.syncHost();
+  std::printf("    %zu contacts, penetration %.4f%%\n", st.solver.contacts, 100 * double(st.max_penetration));
+  built = n;
+  return set;
+}
+
+rbd::BodySet<T> scene_set(const Run& r) {
+  if (r.scene == "pile") return shared_pile<T>(r.n);
+  if (r.scene == "column") return mass_column<T>(r.n, r.ratio);
+  return settled_hopper(r.n);
+}
+
 template <class Method>
 Result run(const Run& r) {
-  rbd::BodySet<T> set = r.scene == "pile" ? shared_pile<T>(r.n) : mass_column<T>(r.n, r.ratio);
+  rbd::BodySet<T> set = scene_set(r);
   const SolverSettings<T> s = settings_for(r);
   rbd::World<Dev, T, rbd::ConeFriction, Method> world(set, s);
   EventTimer timer(stream_t{});
@@ -144,7 +183,7 @@ const char* verdict(const Run& r, const Result& x) {
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "--scene pile|column [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
+      "--scene pile|column|hopper [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
       "[--dts LIST] [--steps N] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -159,7 +198,7 @@ int main(int argc, char** argv) {
     else if (a == "--csv") o.csv = option_value(argc, argv, i);
     else usage_exit(argv[0], usage, a);
   }
-  if (o.scene != "pile" && o.scene != "column") usage_exit(argv[0], usage, "--scene " + o.scene);
+  if (o.scene != "pile" && o.scene != "column" && o.scene != "hopper") usage_exit(argv[0], usage, "--scene " + o.scene);
   try {
     const std::string gpu = print_banner("gpusolve atlas: whole World steps, time per step against accuracy");
     std::FILE* csv = open_csv(
@@ -168,7 +207,8 @@ int main(int argc, char** argv) {
         "max_penetration,residual_median,iterations_mean,capped_steps,diverged_steps,kinetic_energy,height,verdict,"
         "gpu");
     const std::vector<double> ratios = o.scene == "column" ? o.ratios : std::vector<double>{1};
-    const std::vector<std::size_t> ns = !o.n.empty() ? o.n : std::vector<std::size_t>{o.scene == "column" ? 10u : 10000u};
+    const std::size_t scene_n = o.scene == "column" ? 10 : o.scene == "hopper" ? 9857 : 10000;
+    const std::vector<std::size_t> ns = !o.n.empty() ? o.n : std::vector<std::size_t>{scene_n};
     for (std::size_t n : ns)
       for (double ratio : ratios)
         for (double dt : o.dts)
@@ -176,7 +216,8 @@ int main(int argc, char** argv) {
             for (const auto& method : o.methods)
               for (const auto& budget : o.budgets) {
                 Run r{o.scene, method, budget, n, ratio, margin, dt, o.steps};
-                if (r.steps == 0) r.steps = o.scene == "column" ? 2000 : (n <= 10000 ? 1200 : 900);
+                if (r.steps == 0)
+                  r.steps = o.scene == "column" ? 2000 : o.scene == "hopper" ? 600 : (n <= 10000 ? 1200 : 900);
                 if (r.margin < 0) r.margin = double(SolverSettings<T>{}.margin);
                 std::printf("... %s n=%zu ratio=%g %s %s margin=%g dt=%g, %ld steps\n", r.scene.c_str(), n, ratio,
                             method.c_str(), budget.c_str(), r.margin, dt, r.steps);
