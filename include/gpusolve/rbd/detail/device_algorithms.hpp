@@ -137,6 +137,24 @@ class DeviceAlgorithms {
 #if GPUSOLVE_HAS_NVCC
       T* values = values_for<T>(n);
       launch(Device{}, n, EvaluateInto<F, T>{f, values}, stream);
+      reduce_values(values, n, init, op, out, stream);
+#else
+      unsupported();
+#endif
+    } else {
+      (void)stream;
+      T r = init;
+      for (std::size_t i = 0; i < n; ++i) r = op(r, f(i));
+      *out = r;
+    }
+  }
+
+  // *out = init op values[0] op ... op values[n - 1], for values already in the
+  // backend's memory (no evaluation pass), left there.
+  template <class T, class Op>
+  void reduce_values(const T* values, std::size_t n, T init, Op op, T* out, stream_t stream) {
+    if constexpr (gpu) {
+#if GPUSOLVE_HAS_NVCC
       run([&](void* temp, std::size_t& bytes) {
         return cub::DeviceReduce::Reduce(temp, bytes, values, out, items(n), op, init, stream);
       });
@@ -146,7 +164,7 @@ class DeviceAlgorithms {
     } else {
       (void)stream;
       T r = init;
-      for (std::size_t i = 0; i < n; ++i) r = op(r, f(i));
+      for (std::size_t i = 0; i < n; ++i) r = op(r, values[i]);
       *out = r;
     }
   }

@@ -84,12 +84,6 @@ enum : std::size_t {
   slots = momentum_slot + momentum_slots
 };
 
-template <class T>
-struct Entries {
-  VectorD1View<T> a;
-  GPUSOLVE_HD T operator()(std::size_t i) const { return a[i]; }
-};
-
 // Strictly inside the cone, by a relative margin (a contact on the rim is not free).
 template <class T>
 GPUSOLVE_HD bool is_free(const T* x, T mu) {
@@ -472,7 +466,7 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
     const auto residual = this->residual_.view();
     const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs, T(1) / s.dt, s.correction};
     const auto sum = [&](std::size_t count, const VectorD1View<T>& terms, std::size_t slot) {
-      alg_.reduce_into(count, acg::Entries<T>{terms}, T(0), detail::PlusOp{}, state + slot, stream);
+      alg_.reduce_values(terms.ptr, count, T(0), detail::PlusOp{}, state + slot, stream);
     };
     auto attempt = [&](T omega, SolverStats<T>& st) {
       if (from_x && st.retries == 0) {
@@ -506,8 +500,8 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
       for (std::size_t it = 1;; ++it) {
         const bool measure = monitor.checks(it);
         launch(dev, nc, direction, stream);
-        alg_.reduce_into(nc, acg::Entries<T>{step_.view()}, std::numeric_limits<T>::infinity(), detail::MinOp{},
-                         state + acg::alpha_max_slot, stream);
+        alg_.reduce_values(step_.data(), nc, std::numeric_limits<T>::infinity(), detail::MinOp{},
+                           state + acg::alpha_max_slot, stream);
         sum(nc, uphill_.view(), acg::momentum_slot + detail::uphill_slot);
         sum(nc, descent_.view(), acg::descent_slot);
         body_phase(detail::LaunchExec<Device, T>{stream});
