@@ -1,4 +1,5 @@
 // Broad phase against brute force, narrow-phase geometry by hand, and the contact list.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -208,6 +209,11 @@ TEST_CASE("collision detection on a random cloud matches a brute-force contact s
   }
   std::sort(expected.begin(), expected.end());
   REQUIRE(expected.size() > 300);
+  // Both ways of the write pass: spheres within the count pass's kept list and
+  // a large sphere with more contacts, which walks the grid again.
+  std::vector<std::size_t> per_sphere(s.size(), 0);
+  for (std::uint64_t k : expected) ++per_sphere[std::size_t(k >> 32)];
+  REQUIRE(*std::max_element(per_sphere.begin(), per_sphere.end()) > rbd::detail::kept_contacts);
   REQUIRE(n == expected.size());
   for (std::size_t k = 0; k < n; ++k) {
     INFO("contact " << k);

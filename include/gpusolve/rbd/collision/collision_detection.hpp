@@ -70,39 +70,70 @@ struct ContactWalk {
   }
 };
 
+// The contacts a count pass keeps per sphere (the b bodies, sorted), so that
+// the write pass reads them instead of walking the grid a second time. Equal
+// spheres have at most 12 neighbours, about half of them with a larger index;
+// a sphere with more contacts (a large one among small ones) walks again.
+inline constexpr std::uint32_t kept_contacts = 8;
+
+// Insertion sort of a sphere's few bodies, in place.
+template <class Get, class Set>
+GPUSOLVE_HD void sort_few(std::uint32_t first, std::uint32_t last, Get get, Set set) {
+  for (std::uint32_t p = first + 1; p < last; ++p) {
+    const std::uint32_t j = get(p);
+    std::uint32_t q = p;
+    for (; q > first && get(q - 1) > j; --q) set(q, get(q - 1));
+    set(q, j);
+  }
+}
+
+// Counts sphere i's contacts and keeps the first kept_contacts of them, sorted,
+// at kept[c * n + i] (c = 0, 1, ...: a warp's stores are contiguous).
 template <class Walk>
 struct CountContacts {
   Walk walk;
   std::uint32_t* count;
+  std::uint32_t* kept;
+  std::size_t n;
   GPUSOLVE_HD void operator()(std::size_t i) const {
+    std::uint32_t found[kept_contacts];
     std::uint32_t c = 0;
-    walk(i, [&c](std::uint32_t) { ++c; });
+    walk(i, [&](std::uint32_t j) {
+      if (c < kept_contacts) found[c] = j;
+      ++c;
+    });
+    const std::uint32_t k = c < kept_contacts ? c : kept_contacts;
+    sort_few(0, k, [&](std::uint32_t p) { return found[p]; }, [&](std::uint32_t p, std::uint32_t j) { found[p] = j; });
+    for (std::uint32_t p = 0; p < k; ++p) kept[p * n + i] = found[p];
     count[i] = c;
   }
 };
 
 // Writes sphere i's contacts at [offset[i] - count[i], offset[i]) in
 // increasing order of body b, unless that passes the contacts' capacity (their
-// view's size): the caller grows and repeats. The walk's bodies are sorted in
-// place in the b column first (a sphere has few), so the list comes out in
-// (a, b) order without a global sort.
+// view's size): the caller grows and repeats. The bodies come from the count
+// pass's kept list, or, for a sphere with more, from a second walk sorted in
+// place in the b column, so the list comes out in (a, b) order without a
+// global sort.
 template <class Walk, class ContactView, class T>
 struct WriteContacts {
   Walk walk;
   const std::uint32_t* offset;  // inclusive scan of the counts
   const std::uint32_t* count;
+  const std::uint32_t* kept;
+  std::size_t n;
   ContactView contacts;
   T mu;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     if (offset[i] > contacts.size()) return;
     const std::uint32_t first = offset[i] - count[i], last = offset[i];
-    std::uint32_t o = first;
-    walk(i, [&](std::uint32_t j) { contacts.b[o++] = j; });
-    for (std::uint32_t p = first + 1; p < last; ++p) {  // insertion sort
-      const std::uint32_t j = contacts.b[p];
-      std::uint32_t q = p;
-      for (; q > first && contacts.b[q - 1] > j; --q) contacts.b[q] = contacts.b[q - 1];
-      contacts.b[q] = j;
+    if (count[i] <= kept_contacts) {
+      for (std::uint32_t p = first; p < last; ++p) contacts.b[p] = kept[(p - first) * n + i];
+    } else {
+      std::uint32_t o = first;
+      walk(i, [&](std::uint32_t j) { contacts.b[o++] = j; });
+      sort_few(first, last, [&](std::uint32_t p) { return std::uint32_t(contacts.b[p]); },
+               [&](std::uint32_t p, std::uint32_t j) { contacts.b[p] = j; });
     }
     for (std::uint32_t p = first; p < last; ++p) {
       const std::uint32_t j = contacts.b[p];
@@ -175,6 +206,7 @@ class CollisionDetection {
     detail::ensure_size(obstacle_count_, 1);
     detail::ensure_size(count_, n);
     detail::ensure_size(offset_, n);
+    detail::ensure_size(kept_, detail::kept_contacts * n);
     detail::ensure_size(summary_, 1);
     detail::ensure_size(non_finite_, 1);
     if (contacts.capacity() < 4 * n) contacts.resize(4 * n);
@@ -185,7 +217,8 @@ class CollisionDetection {
       if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
         const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, mu};
         graph_.run(key, queue, stream);
-      } else {
+      } else {  // scratch may have moved: no kept graph may point to it
+        graph_.forget();
         queue(stream);
         sized_for_ = n;
       }
@@ -219,15 +252,16 @@ class CollisionDetection {
     algorithms_.select_indices(n, detail::IsObstacle<View>{b}, obstacles_.data(), obstacle_count_.data(), stream);
     using Walk = detail::ContactWalk<View, T>;
     const Walk walk{b, margin, grid, obstacles_.data(), obstacle_count_.data()};
-    launch(dev, n, detail::CountContacts<Walk>{walk, count_.data()}, stream);
+    launch(dev, n, detail::CountContacts<Walk>{walk, count_.data(), kept_.data(), n}, stream);
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
-    launch(dev, n, detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), c, mu}, stream);
+    launch(dev, n, detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), kept_.data(), n, c, mu},
+           stream);
     launch(dev, 1, detail::Summarize<T>{offset_.data() + (n - 1), grid_.cell(), non_finite_.data(), summary_.data()},
            stream);
   }
 
   UniformGrid<Device, T> grid_;
-  D1<std::uint32_t> obstacles_, obstacle_count_, count_, offset_;
+  D1<std::uint32_t> obstacles_, obstacle_count_, count_, offset_, kept_;
   D1<std::uint64_t> non_finite_;
   D1<detail::DetectionSummary<T>> summary_;
   detail::DeviceAlgorithms<Device> algorithms_;

@@ -54,6 +54,10 @@ class GraphReplay {
     key_.assign(bytes, bytes + sizeof(Key));
   }
 
+  // Drops the kept graph's key, so that the next run(key, ...) captures anew:
+  // for a caller whose launches outside the graph reallocated what it points to.
+  void forget() { key_.clear(); }
+
   template <class Work>
   void run(Work&& work, stream_t stream) {
     if constexpr (std::is_same_v<Device, device::gpu>) {

@@ -455,14 +455,14 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
     const Device dev{};
     acc_.prepare(b, c, stream);
     stats.reduction_passes = acc_.passes();
-    for (auto* v : {&p_, &px_, &pg_}) detail::ensure_size(*v, nc, Model::rows);
+    for (auto* v : {&rhs_, &p_, &px_, &pg_}) detail::ensure_size(*v, nc, Model::rows);
     for (auto* v : {&dvp_, &dwp_, &pv_, &pw_}) detail::ensure_size(*v, nb, 3);
     for (auto* v : {&rz_, &chop_, &step_, &uphill_, &descent_}) detail::ensure_size(*v, nc);
     detail::ensure_size(pwp_, nb);
     if (state_.size_x() == 0) state_.resize(acg::slots);
     T* state = state_.data();
     using Sink = decltype(acc_.sink());
-    const auto rhs = this->rhs_.view();
+    const auto rhs = rhs_.view();
     const auto residual = this->residual_.view();
     const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs, T(1) / s.dt, s.correction};
     const auto sum = [&](std::size_t count, const VectorD1View<T>& terms, std::size_t slot) {
@@ -521,7 +521,7 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
  private:
   Accumulator<Gather, Device, T> acc_;
   detail::DeviceAlgorithms<Device> alg_;
-  VectorD2<T, device_is<Device>> p_, px_, pg_, dvp_, dwp_, pv_, pw_;
+  VectorD2<T, device_is<Device>> rhs_, p_, px_, pg_, dvp_, dwp_, pv_, pw_;  // rhs_: each contact's gradient
   VectorD1<T, device_is<Device>> rz_, chop_, step_, uphill_, descent_, pwp_, state_;
 };
 

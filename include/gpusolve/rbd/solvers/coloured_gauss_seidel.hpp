@@ -34,8 +34,9 @@ struct GaussSeidelContact {
   std::size_t first;
   GPUSOLVE_HD void operator()(std::size_t k) const {
     const std::size_t i = order[first + k];
-    phi(i);
-    resolve(i);
+    T e[Model::rows];
+    phi.error(i, e);
+    resolve.update(i, e);
   }
 };
 
@@ -99,11 +100,12 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
         contacts.x.fill(T(0), stream);
       }
       ConvergenceMonitor<T> monitor(s, st);
-      const CalcNextPhi<Model, BV, CV, T> phi{b, c, this->rhs_.view(), T(1) / s.dt, s.correction};
+      const VectorD2View<T> rhs{};  // GaussSeidelContact keeps each error in registers: no store
+      const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs, T(1) / s.dt, s.correction};
       for (std::size_t it = 1;; ++it) {
         const bool measure = monitor.checks(it);
         const ResolveCollisions<Model, BV, CV, detail::DirectSink<BV, T>, T> resolve{
-            b, c, this->rhs_.view(), sink, omega, measure, this->residual_.view()};
+            b, c, rhs, sink, omega, measure, this->residual_.view()};
         sweep([&](std::size_t first) {
           return detail::GaussSeidelContact<Model, BV, CV, T>{phi, resolve, order, first};
         });

@@ -17,8 +17,8 @@
 
 namespace gpusolve::rbd {
 
-// Scratch kept between solves (each contact's velocity error and residual, the
-// start velocities for a retry, the residual reduction) and begin(): validate
+// Scratch kept between solves (each contact's residual, the start velocities
+// for a retry, the residual reduction) and begin(): validate
 // the settings, size the scratch and compute each contact's inverse block.
 template <class Device, class T, class Model>
 class ContactSolverBase {
@@ -35,7 +35,6 @@ class ContactSolverBase {
     s.validate();
     stats.contacts = c.size();
     if (c.size() == 0) return false;
-    detail::ensure_size(rhs_, c.size(), Model::rows);
     detail::ensure_size(residual_, c.size());
     launch(Device{}, c.size(), InverseBlocks<Model, BV, CV, T>{b, c}, stream);  // independent of velocities: once
     return true;
@@ -43,7 +42,6 @@ class ContactSolverBase {
   // The largest residual of this iteration's contacts (+inf for a non-finite velocity).
   T residual(const BV& b, std::size_t contacts, stream_t stream) { return check_(b, residual_.view(), contacts, stream); }
 
-  VectorD2<T, device_is<Device>> rhs_;
   VectorD1<T, device_is<Device>> residual_;
   VelocitySnapshot<Device, T> start_;
 

@@ -97,7 +97,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     stats.reduction_passes = acc_.passes();
 
     using Sink = decltype(acc_.sink());
-    const auto rhs = this->rhs_.view();
+    const VectorD2View<T> rhs{};  // JacobiContact keeps each error in registers: no store
     const auto residual = this->residual_.view();
     auto attempt = [&](T omega, SolverStats<T>& st) {
       if (from_x && st.retries == 0) {
