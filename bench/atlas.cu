@@ -4,7 +4,7 @@
 //
 // Run: gpusolve_bench_atlas --scene pile|column|hopper [--n 10000,100000] [--ratios 1,100,1000]
 //        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,tol0.02] [--margins 0.1]
-//        [--dts 0.0025] [--steps N] [--csv FILE]
+//        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, PILE.md), N spheres dropped into
 //         an open box; 1 200 steps for N <= 10 000, else 900 (PILE.md's counts).
@@ -19,12 +19,16 @@
 // the residual measured once after the last; "tolX" iterates to tolerance X
 // (cap 2 000, checked every 10). Every run: the cone model, friction 0.5 (the
 // hopper: 0.1).
+// --warm: SolverSettings::warm_start (default: the library's). --backend cpu
+// runs the same World on device::cpu (no GPU needed; host clock, OpenMP
+// threads): its accuracy columns are the method's, its times only the host's.
 // Measured, over the last third of the steps: time per whole step (detection,
 // solve, integration and World's statistics, what a user's loop pays) with CUDA
 // events around World::step, mean and median; mean iterations; the median final
 // residual. Over the last 200 steps: the largest penetration relative to the
 // radius. Over the whole run: steps at the iteration cap and diverged steps.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -38,11 +42,14 @@
 #include "shared_pile.hpp"
 #include "timing.hpp"
 
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
 namespace {
 using namespace gpusolve;
 using namespace gpusolve::bench;
 using T = float;
-using Dev = device::gpu;
 using rbd::SolverSettings;
 
 struct Options {
@@ -52,6 +59,8 @@ struct Options {
   std::vector<std::string> methods{"gauss-seidel", "jacobi"};
   std::vector<std::string> budgets{"default"};
   std::vector<double> margins{-1};  // -1: the library's default
+  std::vector<double> warm{-1};     // -1: the library's default
+  std::string backend = "gpu";
   std::vector<double> dts{0.0025};
   long steps = 0;  // 0: the scene's
   std::string csv;
@@ -60,8 +69,9 @@ struct Options {
 struct Run {
   std::string scene, method, budget;
   std::size_t n = 0;
-  double ratio = 1, margin = 0, dt = 0;
+  double ratio = 1, margin = 0, dt = 0, warm = 0;
   long steps = 0;
+  bool gpu = true;
 };
 
 struct Result {
@@ -77,6 +87,7 @@ SolverSettings<T> settings_for(const Run& r) {
   s.dt = T(r.dt);
   s.friction = T(r.scene == "hopper" ? hopper_friction : 0.5);
   if (r.margin >= 0) s.margin = T(r.margin);
+  s.warm_start = T(r.warm);
   if (r.budget.rfind("it", 0) == 0) {
     s.max_iterations = std::stoul(r.budget.substr(2));
     s.check_every = s.max_iterations;
@@ -92,6 +103,7 @@ SolverSettings<T> settings_for(const Run& r) {
 }
 
 // The hopper of n spheres after its warm-up with the outlet closed, built and settled once.
+template <class Dev>
 const rbd::BodySet<T>& settled_hopper(std::size_t n) {
   static std::size_t built = 0;
   static rbd::BodySet<T> set;
@@ -116,18 +128,40 @@ const rbd::BodySet<T>& settled_hopper(std::size_t n) {
   return set;
 }
 
+template <class Dev>
 rbd::BodySet<T> scene_set(const Run& r) {
   if (r.scene == "pile") return shared_pile<T>(r.n);
   if (r.scene == "column") return mass_column<T>(r.n, r.ratio);
-  return settled_hopper(r.n);
+  return settled_hopper<Dev>(r.n);
 }
 
-template <class Method>
+// Milliseconds of one step: CUDA events on the GPU, the host clock on the CPU
+// backend (which runs as it queues).
+template <class Dev>
+class StepTimer;
+template <>
+class StepTimer<device::gpu> : public EventTimer {
+ public:
+  StepTimer() : EventTimer(stream_t{}) {}
+};
+template <>
+class StepTimer<device::cpu> {
+ public:
+  void start() { t0_ = std::chrono::steady_clock::now(); }
+  double stop_ms() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point t0_;
+};
+
+template <class Dev, class Method>
 Result run(const Run& r) {
-  rbd::BodySet<T> set = scene_set(r);
+  rbd::BodySet<T> set = scene_set<Dev>(r);
   const SolverSettings<T> s = settings_for(r);
   rbd::World<Dev, T, rbd::ConeFriction, Method> world(set, s);
-  EventTimer timer(stream_t{});
+  StepTimer<Dev> timer;
   std::vector<double> ms, residuals;
   Result out;
   double iterations = 0;
@@ -163,12 +197,13 @@ Result run(const Run& r) {
   return out;
 }
 
+template <class Dev>
 Result dispatch(const Run& r) {
-  if (r.method == "gauss-seidel") return run<rbd::ColouredGaussSeidel>(r);
-  if (r.method == "jacobi") return run<rbd::Jacobi<rbd::Gather>>(r);
-  if (r.method == "apgd") return run<rbd::AcceleratedJacobi<rbd::Gather>>(r);
-  if (r.method == "substepping") return run<rbd::Substepping<>>(r);
-  if (r.method == "apgd-cg") return run<rbd::AcceleratedCG>(r);
+  if (r.method == "gauss-seidel") return run<Dev, rbd::ColouredGaussSeidel>(r);
+  if (r.method == "jacobi") return run<Dev, rbd::Jacobi<rbd::Gather>>(r);
+  if (r.method == "apgd") return run<Dev, rbd::AcceleratedJacobi<rbd::Gather>>(r);
+  if (r.method == "substepping") return run<Dev, rbd::Substepping<>>(r);
+  if (r.method == "apgd-cg") return run<Dev, rbd::AcceleratedCG>(r);
   throw InvalidArgumentError("atlas: unknown method '" + r.method +
                              "' (gauss-seidel, jacobi, apgd, substepping or apgd-cg)");
 }
@@ -184,7 +219,7 @@ int main(int argc, char** argv) {
   Options o;
   const char* usage =
       "--scene pile|column|hopper [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
-      "[--dts LIST] [--steps N] [--csv FILE]";
+      "[--warm LIST] [--dts LIST] [--steps N] [--backend gpu|cpu] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--scene") o.scene = option_value(argc, argv, i);
@@ -193,17 +228,32 @@ int main(int argc, char** argv) {
     else if (a == "--methods") o.methods = parse_words(option_value(argc, argv, i));
     else if (a == "--budgets") o.budgets = parse_words(option_value(argc, argv, i));
     else if (a == "--margins") o.margins = parse_list<double>(option_value(argc, argv, i));
+    else if (a == "--warm") o.warm = parse_list<double>(option_value(argc, argv, i));
+    else if (a == "--backend") o.backend = option_value(argc, argv, i);
     else if (a == "--dts") o.dts = parse_list<double>(option_value(argc, argv, i));
     else if (a == "--steps") o.steps = std::stol(option_value(argc, argv, i));
     else if (a == "--csv") o.csv = option_value(argc, argv, i);
     else usage_exit(argv[0], usage, a);
   }
   if (o.scene != "pile" && o.scene != "column" && o.scene != "hopper") usage_exit(argv[0], usage, "--scene " + o.scene);
+  if (o.backend != "gpu" && o.backend != "cpu") usage_exit(argv[0], usage, "--backend " + o.backend);
   try {
-    const std::string gpu = print_banner("gpusolve atlas: whole World steps, time per step against accuracy");
+    const char* what = "gpusolve atlas: whole World steps, time per step against accuracy";
+    std::string gpu;
+    if (o.backend == "gpu") {
+      gpu = print_banner(what);
+    } else {
+#if defined(_OPENMP)
+      const int threads = omp_get_max_threads();
+#else
+      const int threads = 1;
+#endif
+      gpu = "cpu backend (" + std::to_string(threads) + " threads)";
+      std::printf("%s\n%s: times are the host's\n", what, gpu.c_str());
+    }
     std::FILE* csv = open_csv(
         o.csv,
-        "scene,n,mass_ratio,method,budget,margin,dt,steps,ms_per_step_mean,ms_per_step_median,contacts,colours,"
+        "scene,n,mass_ratio,method,budget,margin,warm_start,dt,steps,ms_per_step_mean,ms_per_step_median,contacts,colours,"
         "max_penetration,residual_median,iterations_mean,capped_steps,diverged_steps,kinetic_energy,height,verdict,"
         "gpu");
     const std::vector<double> ratios = o.scene == "column" ? o.ratios : std::vector<double>{1};
@@ -213,24 +263,26 @@ int main(int argc, char** argv) {
       for (double ratio : ratios)
         for (double dt : o.dts)
           for (double margin : o.margins)
+            for (double warm : o.warm)
             for (const auto& method : o.methods)
               for (const auto& budget : o.budgets) {
-                Run r{o.scene, method, budget, n, ratio, margin, dt, o.steps};
+                Run r{o.scene, method, budget, n, ratio, margin, dt, warm, o.steps, o.backend == "gpu"};
                 if (r.steps == 0)
                   r.steps = o.scene == "column" ? 2000 : o.scene == "hopper" ? 600 : (n <= 10000 ? 1200 : 900);
                 if (r.margin < 0) r.margin = double(SolverSettings<T>{}.margin);
-                std::printf("... %s n=%zu ratio=%g %s %s margin=%g dt=%g, %ld steps\n", r.scene.c_str(), n, ratio,
-                            method.c_str(), budget.c_str(), r.margin, dt, r.steps);
+                if (r.warm < 0) r.warm = double(SolverSettings<T>{}.warm_start);
+                std::printf("... %s n=%zu ratio=%g %s %s margin=%g warm %g dt=%g, %ld steps\n", r.scene.c_str(), n,
+                            ratio, method.c_str(), budget.c_str(), r.margin, r.warm, dt, r.steps);
                 std::fflush(stdout);
-                const Result x = dispatch(r);
+                const Result x = r.gpu ? dispatch<device::gpu>(r) : dispatch<device::cpu>(r);
                 std::printf("    %.3f ms/step (median %.3f), penetration %.4f%%, residual %.3g, %.1f iterations, "
                             "%zu contacts, %zu colours, capped %zu, diverged %zu: %s\n",
                             x.ms_mean, x.ms_median, 100 * x.penetration, x.residual, x.iterations, x.contacts,
                             x.colours, x.capped, x.diverged, verdict(r, x));
                 std::fflush(stdout);
                 if (csv)
-                  std::fprintf(csv, "%s,%zu,%g,%s,%s,%g,%g,%ld,%.4f,%.4f,%zu,%zu,%.6g,%.4g,%.2f,%zu,%zu,%.6g,%.4f,%s,%s\n",
-                               r.scene.c_str(), n, ratio, method.c_str(), budget.c_str(), r.margin, dt, r.steps,
+                  std::fprintf(csv, "%s,%zu,%g,%s,%s,%g,%g,%g,%ld,%.4f,%.4f,%zu,%zu,%.6g,%.4g,%.2f,%zu,%zu,%.6g,%.4f,%s,%s\n",
+                               r.scene.c_str(), n, ratio, method.c_str(), budget.c_str(), r.margin, r.warm, dt, r.steps,
                                x.ms_mean, x.ms_median, x.contacts, x.colours, x.penetration, x.residual, x.iterations,
                                x.capped, x.diverged, x.kinetic, x.height, verdict(r, x), gpu.c_str());
               }

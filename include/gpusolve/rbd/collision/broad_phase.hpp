@@ -8,9 +8,6 @@
 
 #include <limits>
 
-#include <thrust/binary_search.h>
-#include <thrust/execution_policy.h>
-
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
@@ -40,16 +37,28 @@ GPUSOLVE_HD bool on_grid(const View& b, std::size_t i) {
   return true;
 }
 
-// Two grid spheres whose surfaces are closer than `margin`.
-template <class View, class T>
-GPUSOLVE_HD bool spheres_near(const View& b, std::size_t i, std::size_t j, T margin) {
+// A sphere's centre and radius, copied in the grid's sorted order so that a
+// walk reads a neighbour in one load, without its body index first.
+template <class T>
+struct alignas(4 * sizeof(T)) GridSphere {
+  T x[3], r;
+};
+
+// Two spheres whose surfaces are closer than `margin`.
+template <class T>
+GPUSOLVE_HD bool spheres_near(const GridSphere<T>& a, const GridSphere<T>& b, T margin) {
   T d2 = 0;
   for (std::size_t c = 0; c < 3; ++c) {
-    const T d = b.pos(i, c) - b.pos(j, c);
+    const T d = a.x[c] - b.x[c];
     d2 += d * d;
   }
-  const T reach = b.radius[i] + b.radius[j] + margin;
+  const T reach = a.r + b.r + margin;
   return d2 < reach * reach;
+}
+
+template <class View, class T>
+GPUSOLVE_HD GridSphere<T> grid_sphere(const View& b, std::size_t i) {
+  return {{b.pos(i, 0), b.pos(i, 1), b.pos(i, 2)}, b.radius[i]};
 }
 
 template <class View, class T>
@@ -99,50 +108,84 @@ struct HashSpheres {
   }
 };
 
-// [start[h], end[h]): the entries of bucket h in the sorted hashes.
-struct BucketBounds {
-  const std::uint32_t* hash;  // sorted
+// [start[h], end[h]): the entries of bucket h in the sorted hashes, marked
+// where the hash changes from one sorted entry p to the next; p's sphere is
+// copied to spheres[p]. The ends were cleared first, so a bucket without
+// spheres reads as empty whatever its start holds. One thread per sphere and
+// no search, where a thread per bucket made two binary searches of log2(n)
+// dependent loads each.
+template <class View, class T>
+struct MarkBuckets {
+  View b;
+  const std::uint32_t* hash;   // sorted
+  const std::uint32_t* index;  // body indices in that order
   std::size_t n;
+  std::uint32_t mask;  // buckets - 1: larger hashes are off the grid
   std::uint32_t *start, *end;
-  GPUSOLVE_HD void operator()(std::size_t h) const {
-    start[h] = std::uint32_t(thrust::lower_bound(thrust::seq, hash, hash + n, std::uint32_t(h)) - hash);
-    end[h] = std::uint32_t(thrust::upper_bound(thrust::seq, hash, hash + n, std::uint32_t(h)) - hash);
+  GridSphere<T>* spheres;
+  GPUSOLVE_HD void operator()(std::size_t p) const {
+    const std::uint32_t h = hash[p];
+    if (h > mask) return;
+    if (p == 0 || hash[p - 1] != h) start[h] = std::uint32_t(p);
+    if (p + 1 == n || hash[p + 1] != h) end[h] = std::uint32_t(p + 1);
+    spheres[p] = grid_sphere<View, T>(b, index[p]);
   }
 };
 
-// Visits every grid sphere j > i near sphere i, in the 27 cells around i's. A
-// bucket two neighbour cells hash to is visited once; spheres that share a
-// bucket only by a hash collision fail the distance test.
+// Visits every grid sphere j > i near sphere i, in the 27 cells around i's,
+// in bucket order. A bucket two neighbour cells hash to is visited once;
+// spheres that share a bucket only by a hash collision fail the distance test.
+// A walk is a chain of dependent loads, so it issues them in groups: the
+// distinct buckets' ranges together, then the entries `batch` at a time.
 template <class View, class T>
 struct NeighbourWalk {
+  static constexpr int batch = 16;
   View b;
   const T* cell;
   std::uint32_t mask;
   T margin;
-  const std::uint32_t* index;  // body indices sorted by bucket
-  const std::uint32_t* start;  // first entry of each bucket in `index`
-  const std::uint32_t* end;    // one past its last entry
+  const std::uint32_t* index;      // body indices sorted by bucket
+  const GridSphere<T>* spheres;    // their spheres, in that order
+  const std::uint32_t* start;      // first entry of each bucket in `index`
+  const std::uint32_t* end;        // one past its last entry
 
   template <class F>
   GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
     const GridGeometry<T> g(cell, mask);
     if (!g.valid || !on_grid(b, i)) return;
-    const std::int32_t x = g.coord(b.pos(i, 0)), y = g.coord(b.pos(i, 1)), z = g.coord(b.pos(i, 2));
-    std::uint32_t seen[27];
-    int nseen = 0;
+    const GridSphere<T> me = grid_sphere<View, T>(b, i);
+    const std::int32_t x = g.coord(me.x[0]), y = g.coord(me.x[1]), z = g.coord(me.x[2]);
+    std::uint32_t first[27], last[27];
+    int buckets = 0;
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const std::uint32_t h = g.hash(x + dx, y + dy, z + dz);
           bool dup = false;
-          for (int s = 0; s < nseen; ++s) dup = dup || seen[s] == h;
-          if (dup) continue;
-          seen[nseen++] = h;
-          for (std::uint32_t s = start[h]; s < end[h]; ++s) {
-            const std::uint32_t j = index[s];
-            if (j > i && spheres_near(b, i, j, margin)) visit(j);
-          }
+          for (int s = 0; s < buckets; ++s) dup = dup || first[s] == h;
+          if (!dup) first[buckets++] = h;  // the bucket for now, its range below
         }
+    for (int k = 0; k < buckets; ++k) {
+      const std::uint32_t h = first[k];
+      first[k] = start[h], last[k] = end[h];
+    }
+    int k = 0;
+    std::uint32_t s = buckets > 0 ? first[0] : 0;
+    while (k < buckets) {
+      std::uint32_t at[batch];
+      int m = 0;
+      while (k < buckets && m < batch) {
+        if (s < last[k])
+          at[m++] = s++;
+        else if (++k < buckets)
+          s = first[k];
+      }
+      std::uint32_t js[batch];
+      GridSphere<T> qs[batch];
+      for (int q = 0; q < m; ++q) js[q] = index[at[q]], qs[q] = spheres[at[q]];
+      for (int q = 0; q < m; ++q)
+        if (js[q] > i && spheres_near(me, qs[q], margin)) visit(js[q]);
+    }
   }
 };
 
@@ -212,17 +255,23 @@ class UniformGrid {
     int bits = 1;
     while ((std::size_t(1) << bits) <= buckets) ++bits;  // the sentinel `buckets` included
     for (D1<std::uint32_t>* v : {&hash_, &sorted_hash_, &index_, &sorted_index_}) detail::ensure_size(*v, n_);
+    detail::ensure_size(spheres_, n_);
     detail::ensure_size(start_, buckets);
     detail::ensure_size(end_, buckets);
     if (cell_.size_x() == 0) cell_.resize(1);
-    const Walk walk{b, cell_.data(), buckets - 1, margin, sorted_index_.data(), start_.data(), end_.data()};
+    const Walk walk{b,           cell_.data(),   buckets - 1, margin, sorted_index_.data(), spheres_.data(),
+                    start_.data(), end_.data()};
     if (n_ == 0) return walk;
     const Device dev{};
     algorithms_.max_into(n_, detail::SphereReach<View, T>{b, margin}, T(0), cell_.data(), stream);
     launch(dev, n_, detail::HashSpheres<View, T>{b, cell_.data(), buckets - 1, hash_.data(), index_.data()}, stream);
     // Stable, so bodies in one bucket stay in index order on every backend.
     algorithms_.sort_pairs(hash_.data(), sorted_hash_.data(), index_.data(), sorted_index_.data(), n_, bits, stream);
-    launch(dev, buckets, detail::BucketBounds{sorted_hash_.data(), n_, start_.data(), end_.data()}, stream);
+    end_.fill(0u, stream);
+    launch(dev, n_,
+           detail::MarkBuckets<View, T>{b, sorted_hash_.data(), sorted_index_.data(), n_, buckets - 1, start_.data(),
+                                        end_.data(), spheres_.data()},
+           stream);
     return walk;
   }
 
@@ -271,6 +320,7 @@ class UniformGrid {
 
  private:
   D1<std::uint32_t> hash_, sorted_hash_, index_, sorted_index_, count_, offset_, start_, end_;
+  D1<detail::GridSphere<T>> spheres_;
   D1<std::uint64_t> pairs_;
   D1<T> cell_;
   detail::DeviceAlgorithms<Device> algorithms_;

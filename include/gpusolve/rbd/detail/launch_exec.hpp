@@ -6,26 +6,32 @@
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/rbd/detail/reduce.hpp"
+#include "gpusolve/rbd/detail/device_algorithms.hpp"
 
 namespace gpusolve::rbd::detail {
 
 // each(n, f): f(i) for i in [0, n) as one kernel (a loop on the host); sync():
-// nothing, stream order already separates the launches; sum(n, f, out): the
-// sum of f(i) into *out (backend memory) through the SumInto it was given.
+// nothing, stream order already separates the launches; reduce(n, f, init, op,
+// out) and sum(n, f, out): into *out (backend memory) through the
+// DeviceAlgorithms it was given, whose kept buffers a program that is captured
+// into a graph must have reserved (reserve_reduce).
 template <class Device, class T>
 struct LaunchExec {
   stream_t stream;
-  SumInto<Device, T>* summer = nullptr;  // only programs that call sum() need one
+  DeviceAlgorithms<Device>* algorithms = nullptr;  // only programs that reduce need one
 
   template <class F>
   void each(std::size_t n, const F& f) const {
     launch(Device{}, n, f, stream);
   }
   void sync() const {}
+  template <class F, class Op>
+  void reduce(std::size_t n, const F& f, T init, Op op, T* out) const {
+    algorithms->reduce_into(n, f, init, op, out, stream);
+  }
   template <class F>
   void sum(std::size_t n, const F& f, T* out) const {
-    (*summer)(n, f, out, stream);
+    reduce(n, f, T(0), PlusOp{}, out);
   }
 };
 

@@ -4,11 +4,14 @@
 // An iteration program is a __host__ __device__ callable program(e, last) that
 // queues its phases through an executor e: e.each(n, f) runs f(i) for i in
 // [0, n); e.sync() orders everything before it before everything after it;
-// e.sum(n, f, out) writes the sum of f(i) to *out, which index 0 of the next
-// e.each reads at once and every index after the next e.sync() (the sum costs
-// one barrier, not two). It ends with e.sync(). The same program runs under two executors:
-// LaunchExec (launch_exec.hpp, a launch per phase, both backends) and GridExec
-// here (phases of one kernel, GPU). A phase is the same functor either way.
+// e.reduce(n, f, init, op, out) writes init op f(0) op ... op f(n - 1) to *out,
+// which index 0 of the next e.each reads at once and every index after the next
+// e.sync() (the reduction costs one barrier, not two), and e.sum(n, f, out) is
+// its sum. It ends with e.sync(). A start program start(e) queues phases the
+// same way, before the first iteration of a run, and ends with e.sync() if it
+// queued any. The same programs run under two executors: LaunchExec
+// (launch_exec.hpp, a launch per phase, both backends) and GridExec here
+// (phases of one kernel, GPU). A phase is the same functor either way.
 #pragma once
 
 #include <cstddef>
@@ -19,6 +22,7 @@
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/core/error.hpp"
 #include "gpusolve/core/launch.hpp"
+#include "gpusolve/rbd/detail/device_algorithms.hpp"
 
 #if GPUSOLVE_HAS_NVCC
 #include <cooperative_groups.h>
@@ -42,34 +46,46 @@ struct GridExec {
     for (std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride) f(i);
   }
   __device__ void sync() const { cooperative_groups::this_grid().sync(); }
-  template <class F>
-  __device__ void sum(std::size_t n, const F& f, T* out) const {
+  template <class F, class Op>
+  __device__ void reduce(std::size_t n, const F& f, T init, Op op, T* out) const {
     using Reduce = cub::BlockReduce<T, persistent_block_size>;
     __shared__ typename Reduce::TempStorage temp;
-    T s = T(0);
-    each(n, [&](std::size_t i) { s += f(i); });
-    const T block = Reduce(temp).Sum(s);
+    T s = init;
+    each(n, [&](std::size_t i) { s = op(s, f(i)); });
+    const T block = Reduce(temp).Reduce(s, op);
     if (threadIdx.x == 0) partials[blockIdx.x] = block;
     sync();
     if (blockIdx.x == 0) {  // its thread 0 is index 0 of the next each()
-      T t = T(0);
-      for (unsigned k = threadIdx.x; k < gridDim.x; k += blockDim.x) t += partials[k];
-      const T total = Reduce(temp).Sum(t);
+      T t = init;
+      for (unsigned k = threadIdx.x; k < gridDim.x; k += blockDim.x) t = op(t, partials[k]);
+      const T total = Reduce(temp).Reduce(t, op);
       if (threadIdx.x == 0) *out = total;
     }
   }
+  template <class F>
+  __device__ void sum(std::size_t n, const F& f, T* out) const {
+    reduce(n, f, T(0), PlusOp{}, out);
+  }
 };
 
-template <class Program, class T>
+template <class Start, class Program, class T>
 __global__ void __launch_bounds__(persistent_block_size)
-    persistent_iterations_kernel(Program program, std::size_t count, T* partials) {
+    persistent_iterations_kernel(Start start, Program program, std::size_t count, T* partials) {
   const GridExec<T> e{partials};
+  start(e);
   for (std::size_t k = 1; k <= count; ++k) program(e, k == count);
 }
 #endif
 
-// run(program, count, width, stream) queues `count` iterations of `program`
-// (the last one called with last = true) as one cooperative kernel of at most
+// The start program of a run that starts nothing.
+struct NoStart {
+  template <class E>
+  GPUSOLVE_HD void operator()(const E&) const {}
+};
+
+// run(start, program, count, width, stream) queues `start` and `count`
+// iterations of `program` (the last one called with last = true) as one
+// cooperative kernel of at most
 // one block per `persistent_block_size` indices of `width` (the longest phase)
 // and no more blocks than the GPU holds at once. GPU only: available() says
 // whether it can run here (nvcc and a device with cooperative launch).
@@ -90,11 +106,11 @@ class PersistentLoop {
     }
   }
 
-  template <class Program>
-  void run(const Program& program, std::size_t count, std::size_t width, stream_t stream) {
+  template <class Start, class Program>
+  void run(const Start& start, const Program& program, std::size_t count, std::size_t width, stream_t stream) {
 #if GPUSOLVE_HAS_NVCC
     if constexpr (std::is_same_v<Device, device::gpu>) {
-      auto* kernel = &persistent_iterations_kernel<Program, T>;
+      auto* kernel = &persistent_iterations_kernel<Start, Program, T>;
       static const int per_sm = [kernel] {
         int blocks = 0;
         GPUSOLVE_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks, kernel, persistent_block_size, 0));
@@ -107,13 +123,13 @@ class PersistentLoop {
       const std::size_t blocks = wanted == 0 ? 1 : (wanted < resident ? wanted : resident);
       if (partials_.size_x() < blocks) partials_.resize(blocks);
       T* partials = partials_.data();
-      void* args[] = {const_cast<Program*>(&program), &count, &partials};
+      void* args[] = {const_cast<Start*>(&start), const_cast<Program*>(&program), &count, &partials};
       GPUSOLVE_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(kernel), dim3(unsigned(blocks)),
                                                       dim3(persistent_block_size), args, 0, stream));
       return;
     }
 #endif
-    (void)program, (void)count, (void)width, (void)stream;
+    (void)start, (void)program, (void)count, (void)width, (void)stream;
     throw UnsupportedError("gpusolve: the persistent solver kernel needs device::gpu and nvcc");
   }
 

@@ -1,6 +1,6 @@
 // Index-space reductions (max, sum) on a backend through Thrust: the same call
 // serves device::cpu and device::gpu and returns the value on the host; and
-// MaxReducer and SumInto, the repeated reductions of a solver, with scratch kept.
+// MaxReducer, the repeated reduction of a solver's residual, with scratch kept.
 #pragma once
 
 #include <cstddef>
@@ -57,27 +57,6 @@ class MaxReducer {
  private:
   detail::DeviceAlgorithms<Device> algorithms_;
   VectorD1<T, device_is<Device>> out_;
-};
-
-// Sums f(0) ... f(n-1) into *out, memory of the backend, in stream order and
-// without the host waiting: a solver's scalars can stay on the device.
-template <class Device, class T>
-class SumInto {
- public:
-  // Sizes the temporary storage of a sum over n values of f into out, so that
-  // the call itself allocates nothing (it may then be captured into a CUDA graph).
-  template <class F>
-  void reserve(std::size_t n, F f, T* out) {
-    algorithms_.reserve_reduce(n, f, T(0), detail::PlusOp{}, out);
-  }
-
-  template <class F>
-  void operator()(std::size_t n, F f, T* out, stream_t stream = stream_t{}) {
-    algorithms_.reduce_into(n, f, T(0), detail::PlusOp{}, out, stream);
-  }
-
- private:
-  detail::DeviceAlgorithms<Device> algorithms_;
 };
 
 }  // namespace gpusolve::rbd

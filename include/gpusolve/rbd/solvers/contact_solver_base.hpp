@@ -41,6 +41,10 @@ class ContactSolverBase {
   }
   // The largest residual of this iteration's contacts (+inf for a non-finite velocity).
   T residual(const BV& b, std::size_t contacts, stream_t stream) { return check_(b, residual_.view(), contacts, stream); }
+  // Its terms, for a program that takes their maximum itself (over max(contacts, bodies) indices).
+  detail::ResidualOrNotFinite<BV, T> residual_terms(const BV& b, std::size_t contacts) {
+    return {b, residual_.view(), contacts};
+  }
 
   VectorD1<T, device_is<Device>> residual_;
   VelocitySnapshot<Device, T> start_;

@@ -35,12 +35,17 @@ namespace detail {
 // last, the momentum's step (Step, which ends in the barrier the next phase
 // needs), then their sum per body (Apply, the accumulation strategy). Contact
 // and body phases go through the momentum's iterate (iterate.hpp), so a
-// momentum method costs no phase of its own: two barriers per iteration.
-template <class Contact, class Apply, class Step>
+// momentum method costs no phase of its own: two barriers per iteration. The
+// last iteration of a run ends in the residual check's reduction (Residual,
+// convergence.hpp) into *residual_out, inside a persistent kernel as well.
+template <class Contact, class Apply, class Step, class Residual, class T>
 struct JacobiIteration {
   Contact plain, measuring;
   Apply apply;
   Step momentum;
+  Residual residual;
+  std::size_t width;  // max(contacts, bodies): the residual's indices
+  T* residual_out;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e, bool last) const {
@@ -53,6 +58,33 @@ struct JacobiIteration {
     }
     apply(e);
     e.sync();
+    if (last) {
+      e.reduce(width, residual, T(0), MaxOp{}, residual_out);
+      e.sync();
+    }
+  }
+};
+
+// The start program of an attempt's first run: the velocity change of the
+// impulses it starts from (`from_x`: warm start, ApplyImpulses and their sums
+// per body), then the momentum's start (Momentum::start). Under a persistent
+// kernel it costs barriers instead of launches.
+template <class Warm, class Apply, class MomentumStart>
+struct AttemptStart {
+  Warm warm;
+  Apply apply;
+  MomentumStart momentum;
+  bool from_x;
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e) const {
+    if (from_x) {
+      e.each(warm.c.size(), warm);
+      e.sync();
+      apply(e);
+      e.sync();
+    }
+    momentum(e);
   }
 };
 
@@ -91,47 +123,65 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     const BV b = bodies.view();
     const CV c = contacts.view();
     if (!this->begin(b, c, s, stats, stream)) return stats;
-    const std::size_t nc = c.size();
-    const Device dev{};
+    const std::size_t nc = c.size(), width = nc > b.size() ? nc : b.size();
     acc_.prepare(b, c, stream);
     stats.reduction_passes = acc_.passes();
+    momentum_.begin(b, c);
+    if (residual_out_.size_x() == 0) residual_out_.resize(1);
+    T* const residual_out = residual_out_.data();
+    const auto terms = this->residual_terms(b, nc);
+    if (s.graphs) {  // a capture may not grow the reductions' buffers (the first node would keep the old one)
+      algorithms_.reserve_reduce(width, terms, T(0), detail::MaxOp{}, residual_out);
+      algorithms_.reserve_reduce(width, terms, T(0), detail::PlusOp{}, residual_out);
+    }
 
     using Sink = decltype(acc_.sink());
     const VectorD2View<T> rhs{};  // JacobiContact keeps each error in registers: no store
     const auto residual = this->residual_.view();
+    const detail::LaunchExec<Device, T> launched{stream, &algorithms_};
     auto attempt = [&](T omega, SolverStats<T>& st) {
-      if (from_x && st.retries == 0) {
-        launch(dev, nc, ApplyImpulses<Model, BV, CV, Sink, T>{b, c, acc_.sink()}, stream);
-        acc_.apply(b, stream);
-      } else {
-        contacts.x.fill(T(0), stream);
-      }
-      momentum_.begin(b, c, stream);
+      const bool warm = from_x && st.retries == 0;
+      if (!warm) contacts.x.fill(T(0), stream);
+      const detail::AttemptStart<ApplyImpulses<Model, BV, CV, Sink, T>, decltype(acc_.program(b)),
+                                 decltype(momentum_.start(b, c))>
+          start{{b, c, acc_.sink()}, acc_.program(b), momentum_.start(b, c), warm};
       const auto look = momentum_.iterate();
       using Contact = JacobiContact<Model, BV, CV, Sink, T, decltype(look)>;
       const Contact plain{
           {b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, acc_.sink(), omega, false, residual}, look};
       Contact measuring = plain;
       measuring.resolve.measure = true;
-      const detail::JacobiIteration<Contact, decltype(acc_.program(b, look)), decltype(momentum_.program())>
-          iteration{plain, measuring, acc_.program(b, look), momentum_.program()};
+      const detail::JacobiIteration<Contact, decltype(acc_.program(b, look)), decltype(momentum_.program()),
+                                    decltype(terms), T>
+          iteration{plain, measuring, acc_.program(b, look), momentum_.program(), terms, width, residual_out};
       const bool persistent = nc <= s.persistent_max_contacts && persistent_.available();
       ConvergenceMonitor<T> monitor(s, st);
       // Iterations `first` ... `last`, the last one measuring the residual.
       auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
-        const detail::LaunchExec<Device, T> e{q, momentum_.summer()};
+        const detail::LaunchExec<Device, T> e{q, &algorithms_};
         for (std::size_t it = first; it <= last; ++it) iteration(e, it == last);
       };
-      for (std::size_t first = 1;;) {
-        const std::size_t last = monitor.next_check(first);
-        if (persistent)
-          persistent_.run(iteration, last - first + 1, nc > b.size() ? nc : b.size(), stream);
-        else if (s.graphs)
+      // A run: the start program `begin`, then the iterations (a graph's
+      // kernels stay the same from run to run without the start's).
+      auto run = [&](const auto& begin, std::size_t first, std::size_t last) {
+        if (persistent) {
+          persistent_.run(begin, iteration, last - first + 1, width, stream);
+          return;
+        }
+        begin(launched);
+        if (s.graphs)
           graph_.run([&](stream_t q) { iterations(first, last, q); }, stream);
         else
           iterations(first, last, stream);
-        if (monitor.stop(last, this->residual(b, nc, stream))) break;
-        momentum_.after_iteration(stream);
+      };
+      for (std::size_t first = 1;;) {
+        const std::size_t last = monitor.next_check(first);
+        if (first == 1)
+          run(start, first, last);
+        else
+          run(detail::NoStart{}, first, last);
+        if (monitor.stop(last, detail::read_back<Device>(residual_out, 0, stream))) break;
+        momentum_.after_iteration(launched);
         first = last + 1;
       }
     };
@@ -142,6 +192,8 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
  private:
   Accumulator<Strategy, Device, T> acc_;
   Momentum<MomentumTag, Device, T> momentum_;
+  detail::DeviceAlgorithms<Device> algorithms_;  // the programs' reductions
+  VectorD1<T, device_is<Device>> residual_out_;  // the residual check's maximum
   detail::GraphReplay<Device> graph_;           // SolverSettings::graphs
   detail::PersistentLoop<Device, T> persistent_;  // SolverSettings::persistent_max_contacts
 };

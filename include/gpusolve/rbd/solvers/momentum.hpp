@@ -8,9 +8,7 @@
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/config.hpp"
-#include "gpusolve/core/launch.hpp"
-#include "gpusolve/rbd/detail/launch_exec.hpp"
-#include "gpusolve/rbd/detail/reduce.hpp"
+#include "gpusolve/rbd/detail/persistent_loop.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/solvers/iterate.hpp"
 
@@ -34,22 +32,26 @@ struct NoStep {
 
 }  // namespace detail
 
-// Momentum<Tag, Device, T>: begin() when an attempt's start impulses and
-// velocities agree (sizes all its storage). iterate() is the iterate
+// Momentum<Tag, Device, T>: begin() sizes an attempt's storage. start() is the
+// start program (persistent_loop.hpp) of the attempt's first run, queued when
+// its start impulses and velocities agree. iterate() is the iterate
 // (iterate.hpp) the iterations' contact and body phases go through; program()
 // runs between the two phases of an iteration that goes on (it must end in a
-// barrier, which it may take from a sum), after_iteration() where a run of
-// iterations ends without the last one's program; both valid after begin().
-// summer() is the SumInto a LaunchExec running program() needs.
+// barrier, which it may take from a sum), after_iteration(e) where a run of
+// iterations ends without the last one's program; all valid after begin().
 template <class Tag, class Device, class T>
 class Momentum {
  public:
   template <class BV, class CV>
-  void begin(const BV&, const CV&, stream_t) {}
+  void begin(const BV&, const CV&) {}
+  template <class BV, class CV>
+  detail::NoStart start(const BV&, const CV&) {
+    return {};
+  }
   detail::CurrentIterate<T> iterate() { return {}; }
   detail::NoStep program() { return {}; }
-  void after_iteration(stream_t) {}
-  SumInto<Device, T>* summer() { return nullptr; }
+  template <class E>
+  void after_iteration(const E&) {}
 };
 
 namespace detail {
@@ -175,40 +177,53 @@ struct ResetMomentum {
   }
 };
 
+// The momentum's start program: ResetMomentum over contacts and bodies.
+template <class BV, class CV, class T>
+struct StartMomentum {
+  ResetMomentum<BV, CV, T> reset;
+  std::size_t n;  // max(contacts, bodies)
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e) const {
+    e.each(n, reset);
+    e.sync();
+  }
+};
+
 }  // namespace detail
 
 // Nesterov momentum: the iterate the next Jacobi step starts from is extrapolated
 // past the last one (ExtrapolatedIterate). It adds no pass of its own: one sum and
-// one single-thread kernel per iteration. Its scalars stay in the backend's memory
+// one single-thread phase per iteration. Its scalars stay in the backend's memory
 // (no host wait per iteration).
 template <class Device, class T>
 class Momentum<Nesterov, Device, T> {
  public:
   template <class BV, class CV>
-  void begin(const BV& b, const CV& c, stream_t stream) {
+  void begin(const BV& b, const CV& c) {
     detail::ensure_size(px_, c.size(), c.x.size_y());
     detail::ensure_size(pv_, b.size(), 3);
     detail::ensure_size(pw_, b.size(), 3);
     detail::ensure_size(uphill_, c.size());
     if (state_.size_x() == 0) state_.resize(detail::momentum_slots);
     contacts_ = c.size();
-    // Sized here, so that the iterations allocate nothing (they may be captured into a graph).
-    sum_.reserve(contacts_, detail::UphillTerm<T>{uphill_.view()}, state_.data() + detail::uphill_slot);
-    const std::size_t n = c.size() > b.size() ? c.size() : b.size();
-    launch(Device{}, n, detail::ResetMomentum<BV, CV, T>{b, c, px_.view(), pv_.view(), pw_.view(), state_.data()},
-           stream);
+  }
+  template <class BV, class CV>
+  detail::StartMomentum<BV, CV, T> start(const BV& b, const CV& c) {
+    return {{b, c, px_.view(), pv_.view(), pw_.view(), state_.data()}, c.size() > b.size() ? c.size() : b.size()};
   }
   detail::ExtrapolatedIterate<T> iterate() {
     return {px_.view(), pv_.view(), pw_.view(), uphill_.view(), state_.data()};
   }
   detail::NesterovStep<T> program() { return {{uphill_.view()}, contacts_, {state_.data()}}; }
-  void after_iteration(stream_t stream) { program()(detail::LaunchExec<Device, T>{stream, &sum_}); }
-  SumInto<Device, T>* summer() { return &sum_; }
+  template <class E>
+  void after_iteration(const E& e) {
+    program()(e);
+  }
 
  private:
   VectorD2<T, device_is<Device>> px_, pv_, pw_;
   VectorD1<T, device_is<Device>> uphill_, state_;
-  SumInto<Device, T> sum_;
   std::size_t contacts_ = 0;
 };
 
