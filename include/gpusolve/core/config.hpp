@@ -22,6 +22,14 @@
 #define GPUSOLVE_EXEC_CHECK_DISABLE
 #endif
 
+// Put before a loop of fixed trip count whose iterations' loads should all be
+// in flight at once: nvcc unrolls it; host compilers decide for themselves.
+#if defined(__CUDACC__)
+#define GPUSOLVE_UNROLL _Pragma("unroll")
+#else
+#define GPUSOLVE_UNROLL
+#endif
+
 // The CUDA runtime API (memory, streams, events) is usable from plain C++ when
 // its header is on the include path; kernels need nvcc (GPUSOLVE_HAS_NVCC).
 // Define GPUSOLVE_NO_CUDART to build a strictly CPU-only program.

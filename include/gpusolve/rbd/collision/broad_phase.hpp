@@ -135,19 +135,18 @@ struct MarkBuckets {
 // Visits every grid sphere j > i near sphere i, in the 27 cells around i's,
 // in bucket order. A bucket two neighbour cells hash to is visited once;
 // spheres that share a bucket only by a hash collision fail the distance test.
-// A walk is a chain of dependent loads, so it issues them in groups: the
-// distinct buckets' ranges together, then the entries `batch` at a time.
+// A walk is a chain of dependent loads: the 27 buckets' ranges are loaded
+// together, and an entry's index and sphere are independent loads.
 template <class View, class T>
 struct NeighbourWalk {
-  static constexpr int batch = 16;
   View b;
   const T* cell;
   std::uint32_t mask;
   T margin;
-  const std::uint32_t* index;      // body indices sorted by bucket
-  const GridSphere<T>* spheres;    // their spheres, in that order
-  const std::uint32_t* start;      // first entry of each bucket in `index`
-  const std::uint32_t* end;        // one past its last entry
+  const std::uint32_t* index;    // body indices sorted by bucket
+  const GridSphere<T>* spheres;  // their spheres, in that order
+  const std::uint32_t* start;    // first entry of each bucket in `index`
+  const std::uint32_t* end;      // one past its last entry
 
   template <class F>
   GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
@@ -155,36 +154,23 @@ struct NeighbourWalk {
     if (!g.valid || !on_grid(b, i)) return;
     const GridSphere<T> me = grid_sphere<View, T>(b, i);
     const std::int32_t x = g.coord(me.x[0]), y = g.coord(me.x[1]), z = g.coord(me.x[2]);
-    std::uint32_t first[27], last[27];
-    int buckets = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const std::uint32_t h = g.hash(x + dx, y + dy, z + dz);
-          bool dup = false;
-          for (int s = 0; s < buckets; ++s) dup = dup || first[s] == h;
-          if (!dup) first[buckets++] = h;  // the bucket for now, its range below
-        }
-    for (int k = 0; k < buckets; ++k) {
-      const std::uint32_t h = first[k];
-      first[k] = start[h], last[k] = end[h];
+    // Cell c = 9 (dz + 1) + 3 (dy + 1) + dx + 1; bit c of dup: an earlier cell has its bucket.
+    std::uint32_t h[27], dup = 0;
+    GPUSOLVE_UNROLL
+    for (int c = 0; c < 27; ++c) {
+      h[c] = g.hash(x + c % 3 - 1, y + c / 3 % 3 - 1, z + c / 9 - 1);
+      GPUSOLVE_UNROLL
+      for (int d = 0; d < c; ++d) dup |= std::uint32_t(h[d] == h[c]) << c;
     }
-    int k = 0;
-    std::uint32_t s = buckets > 0 ? first[0] : 0;
-    while (k < buckets) {
-      std::uint32_t at[batch];
-      int m = 0;
-      while (k < buckets && m < batch) {
-        if (s < last[k])
-          at[m++] = s++;
-        else if (++k < buckets)
-          s = first[k];
+    std::uint32_t first[27], last[27];
+    GPUSOLVE_UNROLL
+    for (int c = 0; c < 27; ++c) first[c] = start[h[c]], last[c] = end[h[c]];  // no branch between the loads
+    for (int c = 0; c < 27; ++c) {
+      if ((dup >> c) & 1u) continue;
+      for (std::uint32_t s = first[c]; s < last[c]; ++s) {
+        const std::uint32_t j = index[s];
+        if (j > i && spheres_near(me, spheres[s], margin)) visit(j);
       }
-      std::uint32_t js[batch];
-      GridSphere<T> qs[batch];
-      for (int q = 0; q < m; ++q) js[q] = index[at[q]], qs[q] = spheres[at[q]];
-      for (int q = 0; q < m; ++q)
-        if (js[q] > i && spheres_near(me, qs[q], margin)) visit(js[q]);
     }
   }
 };

@@ -32,13 +32,19 @@ class ContactSolverBase {
   // Returns false when there is nothing to solve (no contacts: converged in
   // zero iterations). Throws InvalidArgumentError for bad settings.
   bool begin(const BV& b, const CV& c, const SolverSettings<T>& s, SolverStats<T>& stats, stream_t stream) {
+    if (!prepare(c, s, stats)) return false;
+    launch(Device{}, c.size(), inverse_blocks(b, c), stream);  // independent of velocities: once
+    return true;
+  }
+  // begin() but the inverse blocks, for a solver that runs inverse_blocks() itself.
+  bool prepare(const CV& c, const SolverSettings<T>& s, SolverStats<T>& stats) {
     s.validate();
     stats.contacts = c.size();
     if (c.size() == 0) return false;
     detail::ensure_size(residual_, c.size());
-    launch(Device{}, c.size(), InverseBlocks<Model, BV, CV, T>{b, c}, stream);  // independent of velocities: once
     return true;
   }
+  InverseBlocks<Model, BV, CV, T> inverse_blocks(const BV& b, const CV& c) const { return {b, c}; }
   // The largest residual of this iteration's contacts (+inf for a non-finite velocity).
   T residual(const BV& b, std::size_t contacts, stream_t stream) { return check_(b, residual_.view(), contacts, stream); }
   // Its terms, for a program that takes their maximum itself (over max(contacts, bodies) indices).

@@ -65,12 +65,14 @@ struct JacobiIteration {
   }
 };
 
-// The start program of an attempt's first run: the velocity change of the
-// impulses it starts from (`from_x`: warm start, ApplyImpulses and their sums
-// per body), then the momentum's start (Momentum::start). Under a persistent
-// kernel it costs barriers instead of launches.
-template <class Warm, class Apply, class MomentumStart>
+// The start program of an attempt's first run: each contact's inverse block
+// and the velocity change of the impulses it starts from (`from_x`: warm
+// start, ApplyImpulses and their sums per body), then the momentum's start
+// (Momentum::start). Under a persistent kernel it costs barriers instead of
+// launches.
+template <class Blocks, class Warm, class Apply, class MomentumStart>
 struct AttemptStart {
+  Blocks blocks;
   Warm warm;
   Apply apply;
   MomentumStart momentum;
@@ -78,9 +80,10 @@ struct AttemptStart {
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
+    e.each(warm.c.size(), blocks);
+    if (from_x) e.each(warm.c.size(), warm);
+    e.sync();
     if (from_x) {
-      e.each(warm.c.size(), warm);
-      e.sync();
       apply(e);
       e.sync();
     }
@@ -122,7 +125,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     SolverStats<T> stats;
     const BV b = bodies.view();
     const CV c = contacts.view();
-    if (!this->begin(b, c, s, stats, stream)) return stats;
+    if (!this->prepare(c, s, stats)) return stats;
     const std::size_t nc = c.size(), width = nc > b.size() ? nc : b.size();
     acc_.prepare(b, c, stream);
     stats.reduction_passes = acc_.passes();
@@ -142,9 +145,9 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     auto attempt = [&](T omega, SolverStats<T>& st) {
       const bool warm = from_x && st.retries == 0;
       if (!warm) contacts.x.fill(T(0), stream);
-      const detail::AttemptStart<ApplyImpulses<Model, BV, CV, Sink, T>, decltype(acc_.program(b)),
-                                 decltype(momentum_.start(b, c))>
-          start{{b, c, acc_.sink()}, acc_.program(b), momentum_.start(b, c), warm};
+      const detail::AttemptStart<InverseBlocks<Model, BV, CV, T>, ApplyImpulses<Model, BV, CV, Sink, T>,
+                                 decltype(acc_.program(b)), decltype(momentum_.start(b, c))>
+          start{this->inverse_blocks(b, c), {b, c, acc_.sink()}, acc_.program(b), momentum_.start(b, c), warm};
       const auto look = momentum_.iterate();
       using Contact = JacobiContact<Model, BV, CV, Sink, T, decltype(look)>;
       const Contact plain{
