@@ -71,9 +71,10 @@ struct ContactWalk {
 };
 
 // The contacts a count pass keeps per sphere (the b bodies, sorted), so that
-// the write pass reads them instead of walking the grid a second time. Equal
-// spheres have at most 12 neighbours, about half of them with a larger index;
-// a sphere with more contacts (a large one among small ones) walks again.
+// the write pass reads them instead of walking the grid a second time. An
+// equal sphere touches at most 12 others, about half of them with a larger
+// index, and a few walls; a sphere with more contacts (a large one among small
+// ones, or one in a corner of a pile) walks again.
 inline constexpr std::uint32_t kept_contacts = 8;
 
 // Insertion sort of a sphere's few bodies, in place.
