@@ -81,14 +81,25 @@ struct CacheToBodies {
   VectorD2View<T> dv, dw;
   VectorD1View<std::uint32_t> start;
   Iterate iterate;
+  static constexpr std::uint32_t group = 4;
   GPUSOLVE_HD void operator()(std::size_t k) const {
     const std::uint32_t first = start[k], end = start[k + 1];
     const std::uint32_t last = (Sum || end == first) ? end : first + 1;
-    // A slot at a time, its six values loaded together: one memory round trip
-    // per slot, not per slot and component. Each sum keeps the order of slots.
+    // `group` slots at a time, their values loaded without a branch between
+    // them: one memory round trip per group, not per slot and component. Each
+    // sum keeps the order of slots.
     T sv[3] = {}, sw[3] = {};
-    for (std::uint32_t p = first; p < last; ++p)
-      for (std::size_t c = 0; c < 3; ++c) sv[c] += dv(p, c), sw[c] += dw(p, c);
+    for (std::uint32_t p = first; p < last; p += group) {
+      T gv[group][3], gw[group][3];
+      GPUSOLVE_UNROLL
+      for (std::uint32_t q = 0; q < group; ++q)
+        for (std::size_t c = 0; c < 3; ++c)
+          gv[q][c] = p + q < last ? dv(p + q, c) : T(0), gw[q][c] = p + q < last ? dw(p + q, c) : T(0);
+      GPUSOLVE_UNROLL
+      for (std::uint32_t q = 0; q < group; ++q)
+        if (p + q < last)
+          for (std::size_t c = 0; c < 3; ++c) sv[c] += gv[q][c], sw[c] += gw[q][c];
+    }
     iterate.add(b, k, sv, sw);
   }
 };

@@ -33,9 +33,14 @@ struct CurrentIterate {
   GPUSOLVE_HD void store(const CV& c, std::size_t i, const T (&)[R], const T (&x)[R]) const {
     for (std::size_t r = 0; r < R; ++r) c.x(i, r) = x[r];
   }
+  // All six loads before the first store: the compiler may not move a load
+  // past a store (the views might alias), and one after each store would wait
+  // a memory round trip each.
   template <class BV>
   GPUSOLVE_HD void add(const BV& b, std::size_t k, const T (&sv)[3], const T (&sw)[3]) const {
-    for (std::size_t c = 0; c < 3; ++c) b.v(k, c) += sv[c], b.w(k, c) += sw[c];
+    T v[3], w[3];
+    for (std::size_t c = 0; c < 3; ++c) v[c] = b.v(k, c), w[c] = b.w(k, c);
+    for (std::size_t c = 0; c < 3; ++c) b.v(k, c) = v[c] + sv[c], b.w(k, c) = w[c] + sw[c];
   }
 };
 

@@ -128,11 +128,12 @@ struct ExtrapolatedIterate {
   template <class BV>
   GPUSOLVE_HD void add(const BV& b, std::size_t k, const T (&sv)[3], const T (&sw)[3]) const {
     const T beta = state[body_beta_slot];
+    T v[3], w[3], v0[3], w0[3];  // every load before the first store (CurrentIterate::add)
+    for (std::size_t c = 0; c < 3; ++c) v[c] = b.v(k, c), w[c] = b.w(k, c), v0[c] = pv(k, c), w0[c] = pw(k, c);
     for (std::size_t c = 0; c < 3; ++c) {
-      const T v = b.v(k, c), w = b.w(k, c);
-      b.v(k, c) = v + beta * (v - pv(k, c)) + sv[c];
-      b.w(k, c) = w + beta * (w - pw(k, c)) + sw[c];
-      pv(k, c) = v, pw(k, c) = w;
+      b.v(k, c) = v[c] + beta * (v[c] - v0[c]) + sv[c];
+      b.w(k, c) = w[c] + beta * (w[c] - w0[c]) + sw[c];
+      pv(k, c) = v[c], pw(k, c) = w[c];
     }
   }
 };
