@@ -146,8 +146,8 @@ struct Probe : CurrentIterate<T> {
 
 // A sink that drops the velocity changes (with Probe: measuring only).
 struct NoSink {
-  template <class V>
-  GPUSOLVE_HD void add(std::size_t, std::uint32_t, const V&, const V&) const {}
+  template <class T>
+  GPUSOLVE_HD void add(std::size_t, const BodyResponse<T>&) const {}
 };
 
 // The APGD step's store: the new impulse, no CG direction, and the contact's
@@ -270,7 +270,7 @@ struct Direction {
     step[i] = free ? feasible_step(x, d, mu) : std::numeric_limits<T>::infinity();
     uphill[i] = T(0), descent[i] = s;
     const detail::Frame<T, Model, CV> f(c, i);
-    detail::BodyResponse<T>(phi.b, c, i, f.world(d)).send(phi.b, jacobi.sink, i);
+    detail::BodyResponse<T>(phi.b, c, i, f.world(d)).send(jacobi.sink, i);
   }
 };
 

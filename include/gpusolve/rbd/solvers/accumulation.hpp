@@ -47,13 +47,18 @@ namespace detail {
 template <class Device, class T>
 using Vec3Store = VectorD2<T, device_is<Device>>;
 
+// Contact i's changes into the update cache, entry 2i for body a and 2i + 1
+// for body b; both slots are looked up before the first store.
 template <class T>
 struct CacheSink {
   VectorD2View<T> dv, dw;
   VectorD1View<std::uint32_t> slot;
-  GPUSOLVE_HD void add(std::size_t entry, std::uint32_t, const math::Vector3<T>& v, const math::Vector3<T>& w) const {
-    const std::uint32_t p = slot[entry];
-    for (std::size_t k = 0; k < 3; ++k) dv(p, k) = v[k], dw(p, k) = w[k];
+  GPUSOLVE_HD void add(std::size_t i, const BodyResponse<T>& d) const {
+    const std::uint32_t pa = slot[2 * i], pb = slot[2 * i + 1];
+    if (d.move_a)
+      for (std::size_t k = 0; k < 3; ++k) dv(pa, k) = d.dva[k], dw(pa, k) = d.dwa[k];
+    if (d.move_b)
+      for (std::size_t k = 0; k < 3; ++k) dv(pb, k) = d.dvb[k], dw(pb, k) = d.dwb[k];
   }
 };
 
@@ -126,7 +131,11 @@ struct CacheApply {
 template <class T>
 struct AtomicSink {
   VectorD2View<T> dv, dw;  // bodies x 3
-  GPUSOLVE_HD void add(std::size_t, std::uint32_t body, const math::Vector3<T>& v, const math::Vector3<T>& w) const {
+  GPUSOLVE_HD void add(std::size_t, const BodyResponse<T>& d) const {
+    if (d.move_a) apply(d.ia, d.dva, d.dwa);
+    if (d.move_b) apply(d.ib, d.dvb, d.dwb);
+  }
+  GPUSOLVE_HD void apply(std::uint32_t body, const math::Vector3<T>& v, const math::Vector3<T>& w) const {
     for (std::size_t k = 0; k < 3; ++k) {
       cuda::atomic_ref<T, cuda::thread_scope_device>(dv(body, k)).fetch_add(v[k], cuda::std::memory_order_relaxed);
       cuda::atomic_ref<T, cuda::thread_scope_device>(dw(body, k)).fetch_add(w[k], cuda::std::memory_order_relaxed);

@@ -53,22 +53,26 @@ GPUSOLVE_HD math::Vector3<T> point_velocity(const math::Vector3<T>& v, const mat
 }
 
 // The velocity changes of a contact's two bodies caused by impulse p (world
-// coordinates) acting on a and -p on b at the contact's points.
+// coordinates) acting on a and -p on b at the contact's points, and whether
+// each body moves (a fixed body takes no change). Everything is loaded here,
+// before any store, so that the loads overlap.
 template <class T>
 struct BodyResponse {
   std::uint32_t ia, ib;
+  bool move_a, move_b;
   math::Vector3<T> ra, rb, dva, dwa, dvb, dwb;
   template <class BV, class CV>
   GPUSOLVE_HD BodyResponse(const BV& b, const CV& c, std::size_t i, const math::Vector3<T>& p)
-      : ia(c.a[i]), ib(c.b[i]), ra(load3<T>(c.ra, i)), rb(load3<T>(c.rb, i)) {
+      : ia(c.a[i]), ib(c.b[i]), move_a(b.moving(ia)), move_b(b.moving(ib)), ra(load3<T>(c.ra, i)),
+        rb(load3<T>(c.rb, i)) {
     dva = b.inv_mass[ia] * p, dwa = load9<T>(b.inv_inertia, ia) * (ra % p);
     dvb = -(b.inv_mass[ib] * p), dwb = -(load9<T>(b.inv_inertia, ib) * (rb % p));
   }
-  // Hands the changes of the moving bodies to the sink (entry 2i for a, 2i + 1 for b).
-  template <class BV, class Sink>
-  GPUSOLVE_HD void send(const BV& b, const Sink& sink, std::size_t i) const {
-    if (b.moving(ia)) sink.add(2 * i, ia, dva, dwa);
-    if (b.moving(ib)) sink.add(2 * i + 1, ib, dvb, dwb);
+  // Hands contact i's changes to the sink: Sink::add(i, response) applies or
+  // records those of the moving bodies.
+  template <class Sink>
+  GPUSOLVE_HD void send(const Sink& sink, std::size_t i) const {
+    sink.add(i, *this);
   }
 };
 
@@ -78,7 +82,11 @@ struct BodyResponse {
 template <class BV, class T>
 struct DirectSink {
   BV b;
-  GPUSOLVE_HD void add(std::size_t, std::uint32_t body, const math::Vector3<T>& dv, const math::Vector3<T>& dw) const {
+  GPUSOLVE_HD void add(std::size_t, const BodyResponse<T>& d) const {
+    if (d.move_a) apply(d.ia, d.dva, d.dwa);
+    if (d.move_b) apply(d.ib, d.dvb, d.dwb);
+  }
+  GPUSOLVE_HD void apply(std::uint32_t body, const math::Vector3<T>& dv, const math::Vector3<T>& dw) const {
     for (std::size_t k = 0; k < 3; ++k) b.v(body, k) += dv[k], b.w(body, k) += dw[k];
   }
 };
@@ -155,8 +163,8 @@ struct CalcNextPhi {
 
 // ResolveCollisions (thesis Algorithm 1): the projected, under-relaxed block
 // update x' = proj(x - omega Dinv rhs), and the body velocity changes it causes,
-// handed to Sink::add(entry, body, dv, dw) for each moving body (entry 2i for
-// body a, 2i + 1 for body b). Sink decides how they reach the bodies.
+// handed to Sink::add(i, response) (detail::BodyResponse). Sink decides how
+// the changes of the moving bodies reach them.
 //
 // THE LCP RESIDUAL (defined here, once): with measure set, residual[i] is the
 // largest component, in the contact frame, of the change of the relative
@@ -201,7 +209,7 @@ struct ResolveCollisions {
     Model::project(x, mu);
     for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - y[r];
     const detail::BodyResponse<T> d(b, c, i, f.world(dx));
-    d.send(b, sink, i);
+    d.send(sink, i);
     it.store(c, i, e, x);
     if (measure) {
       const math::Vector3<T> du =
@@ -247,7 +255,7 @@ struct ApplyImpulses {
     T x[Model::rows];
     for (std::size_t r = 0; r < Model::rows; ++r) x[r] = c.x(i, r);
     const detail::Frame<T, Model, CV> f(c, i);
-    detail::BodyResponse<T>(b, c, i, f.world(x)).send(b, sink, i);
+    detail::BodyResponse<T>(b, c, i, f.world(x)).send(sink, i);
   }
 };
 

@@ -115,11 +115,11 @@ struct ExtrapolatedIterate {
   }
   template <class CV, std::size_t R>
   GPUSOLVE_HD void store(const CV& c, std::size_t i, const T (&e)[R], const T (&x)[R]) const {
-    T s = 0;
+    T old[R], s = 0;
+    for (std::size_t r = 0; r < R; ++r) old[r] = c.x(i, r);  // every load before the first store
     for (std::size_t r = 0; r < R; ++r) {
-      const T old = c.x(i, r);
-      s += e[r] * (x[r] - old);
-      px(i, r) = old;
+      s += e[r] * (x[r] - old[r]);
+      px(i, r) = old[r];
       c.x(i, r) = x[r];
     }
     uphill[i] = s;
