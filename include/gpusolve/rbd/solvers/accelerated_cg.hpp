@@ -141,7 +141,7 @@ GPUSOLVE_HD T feasible_step(const T* xi, const T* pi, T mu_) {
 template <class T>
 struct Probe : CurrentIterate<T> {
   template <class CV, std::size_t R>
-  GPUSOLVE_HD void store(const CV&, std::size_t, const T (&)[R], const T (&)[R]) const {}
+  GPUSOLVE_HD void store(const CV&, std::size_t, const T (&)[R], const T (&)[R], const T (&)[R]) const {}
 };
 
 // A sink that drops the velocity changes (with Probe: measuring only).
@@ -157,7 +157,7 @@ struct ApgdStore : CurrentIterate<T> {
   VectorD2View<T> p, px;
   VectorD1View<T> uphill;
   template <class CV, std::size_t R>
-  GPUSOLVE_HD void store(const CV& c, std::size_t i, const T (&e)[R], const T (&x)[R]) const {
+  GPUSOLVE_HD void store(const CV& c, std::size_t i, const T (&e)[R], const T (&)[R], const T (&x)[R]) const {
     T s = 0;
     for (std::size_t r = 0; r < R; ++r) {
       s += e[r] * (x[r] - px(i, r));

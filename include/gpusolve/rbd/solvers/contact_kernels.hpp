@@ -197,8 +197,8 @@ struct ResolveCollisions {
   GPUSOLVE_HD void update(std::size_t i, const T (&e)[Model::rows], const Iterate& it = Iterate{}) const {
     constexpr std::size_t R = Model::rows;
     const detail::Frame<T, Model, CV> f(c, i);
-    T y[R], x[R], dx[R];
-    it.start(c, i, y);
+    T x0[R], y[R], x[R], dx[R];
+    it.start(c, i, x0, y);
     for (std::size_t r = 0; r < R; ++r) {
       T s = 0;
       for (std::size_t k = 0; k < R; ++k) s += c.dinv(i, r * R + k) * e[k];
@@ -210,7 +210,7 @@ struct ResolveCollisions {
     for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - y[r];
     const detail::BodyResponse<T> d(b, c, i, f.world(dx));
     d.send(sink, i);
-    it.store(c, i, e, x);
+    it.store(c, i, e, x0, x);
     if (measure) {
       const math::Vector3<T> du =
           detail::point_velocity(d.dva, d.dwa, d.ra) - detail::point_velocity(d.dvb, d.dwb, d.rb);

@@ -11,9 +11,12 @@ namespace gpusolve::rbd::detail {
 
 // An Iterate tells the contact kernel (JacobiContact) and the per-body sum
 // (the accumulators' to_bodies) where the iteration starts and what it keeps:
-//  - start(c, i, y): contact i's impulse the projected update starts from;
+//  - start(c, i, x, y): contact i's impulse x and the point y its projected
+//    update starts from;
 //  - velocity(b, k, v, w): body k's velocities its contacts' errors are computed from;
-//  - store(c, i, e, x): contact i's new impulse x, computed from error e;
+//  - store(c, i, e, x0, x): contact i's new impulse x, computed from error e,
+//    x0 being the impulse start() gave (so it is not loaded again after the
+//    update's stores);
 //  - add(b, k, sv, sw): body k's new velocities, given its contacts' summed changes.
 // CurrentIterate is the plain one: the impulses and velocities as they are.
 // A momentum method extrapolates instead (momentum.hpp, ExtrapolatedIterate),
@@ -21,8 +24,8 @@ namespace gpusolve::rbd::detail {
 template <class T>
 struct CurrentIterate {
   template <class CV, std::size_t R>
-  GPUSOLVE_HD void start(const CV& c, std::size_t i, T (&y)[R]) const {
-    for (std::size_t r = 0; r < R; ++r) y[r] = c.x(i, r);
+  GPUSOLVE_HD void start(const CV& c, std::size_t i, T (&x)[R], T (&y)[R]) const {
+    for (std::size_t r = 0; r < R; ++r) x[r] = y[r] = c.x(i, r);
   }
   template <class BV>
   GPUSOLVE_HD void velocity(const BV& b, std::uint32_t k, math::Vector3<T>& v, math::Vector3<T>& w) const {
@@ -30,7 +33,7 @@ struct CurrentIterate {
     w = math::Vector3<T>(b.w(k, 0), b.w(k, 1), b.w(k, 2));
   }
   template <class CV, std::size_t R>
-  GPUSOLVE_HD void store(const CV& c, std::size_t i, const T (&)[R], const T (&x)[R]) const {
+  GPUSOLVE_HD void store(const CV& c, std::size_t i, const T (&)[R], const T (&)[R], const T (&x)[R]) const {
     for (std::size_t r = 0; r < R; ++r) c.x(i, r) = x[r];
   }
   // All six loads before the first store: the compiler may not move a load

@@ -97,11 +97,11 @@ struct ExtrapolatedIterate {
   VectorD1View<T> uphill;  // per contact
   T* state;
   template <class CV, std::size_t R>
-  GPUSOLVE_HD void start(const CV& c, std::size_t i, T (&y)[R]) const {
+  GPUSOLVE_HD void start(const CV& c, std::size_t i, T (&x)[R], T (&y)[R]) const {
     const T beta = state[beta_slot];
     for (std::size_t r = 0; r < R; ++r) {
-      const T x = c.x(i, r);
-      y[r] = x + beta * (x - px(i, r));
+      x[r] = c.x(i, r);
+      y[r] = x[r] + beta * (x[r] - px(i, r));
     }
   }
   template <class BV>
@@ -114,12 +114,11 @@ struct ExtrapolatedIterate {
     }
   }
   template <class CV, std::size_t R>
-  GPUSOLVE_HD void store(const CV& c, std::size_t i, const T (&e)[R], const T (&x)[R]) const {
-    T old[R], s = 0;
-    for (std::size_t r = 0; r < R; ++r) old[r] = c.x(i, r);  // every load before the first store
+  GPUSOLVE_HD void store(const CV& c, std::size_t i, const T (&e)[R], const T (&x0)[R], const T (&x)[R]) const {
+    T s = 0;
     for (std::size_t r = 0; r < R; ++r) {
-      s += e[r] * (x[r] - old[r]);
-      px(i, r) = old[r];
+      s += e[r] * (x[r] - x0[r]);
+      px(i, r) = x0[r];
       c.x(i, r) = x[r];
     }
     uphill[i] = s;
