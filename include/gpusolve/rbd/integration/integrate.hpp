@@ -99,6 +99,18 @@ struct UpdateBody {
   }
 };
 
+// Move, then UpdateBody with motion, of one body: one launch for both, since
+// a body's derived fields read only its own new state.
+template <class View, class T>
+struct MoveBody {
+  Move<View, T> move;
+  UpdateBody<View, T> update;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    move(i);
+    update(i);
+  }
+};
+
 // Recomputes the derived fields of bodies [first, last) without touching motion
 // (after bodies were set from outside, e.g. by the BodyManager).
 template <class Device, class View>
@@ -126,8 +138,7 @@ void move(Bodies<Device, T>& bodies, T dt, stream_t stream = stream_t{}) {
   using View = typename Bodies<Device, T>::View;
   const View b = bodies.view();
   if (b.size() == 0) return;
-  launch(Device{}, b.size(), Move<View, T>{b, dt}, stream);
-  launch(Device{}, b.size(), UpdateBody<View, T>{b, 0, true}, stream);
+  launch(Device{}, b.size(), MoveBody<View, T>{{b, dt}, {b, 0, true}}, stream);
 }
 
 // One unconstrained time step (no contacts): apply_forces, then move.
