@@ -6,10 +6,14 @@
              per pile size (log-log);
   column:    iterations per step to the tolerance against the mass ratio;
   stability: method x time step x mass ratio, each cell converged, capped or
-             diverged, with its mean iterations.
+             diverged, with its mean iterations;
+  warm:      the warm-start factor (--warm): the pile's largest penetration
+             against it, one line per method and budget, and each column's
+             verdict per method, budget, mass ratio and factor.
 
 Usage: python3 tools/plot_atlas.py pile CSV [CSV ...] -o pile.png
        python3 tools/plot_atlas.py stability CSV [CSV ...] -o stability.png
+       python3 tools/plot_atlas.py warm CSV [CSV ...] -o warm.png
 """
 import argparse
 import csv
@@ -73,13 +77,50 @@ def plot_pile(rows, out):
     fig.savefig(out, dpi=110)
 
 
+VERDICT_COLOUR = {"converged": "#6cc26c", "capped": "#f0c040", "diverged": "#e05050"}
+
+
+def plot_warm(rows, out):
+    plt = pyplot()
+    pile = [r for r in rows if r["scene"] == "pile"]
+    column = [r for r in rows if r["scene"] == "column"]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.5))
+    lines = {}
+    for r in pile:
+        lines.setdefault((r["method"], r["budget"], r["n"]), []).append(r)
+    for (method, budget, n), pts in sorted(lines.items()):
+        pts.sort(key=lambda r: float(r["warm_start"]))
+        left.plot([float(r["warm_start"]) for r in pts], [100 * float(r["max_penetration"]) for r in pts], marker="o",
+                  label=f"{method}, {budget_label(budget)} iterations, {n} spheres")
+    left.set_xlabel("warm start (fraction of the last impulse)")
+    left.set_ylabel("largest penetration (% of radius), last 200 steps")
+    left.set_title("shared pile")
+    left.grid(True, alpha=0.3)
+    left.legend(fontsize=8)
+    warms = sorted({float(r["warm_start"]) for r in column})
+    cases = sorted({(r["method"], r["budget"], float(r["mass_ratio"])) for r in column})
+    for r in column:
+        x = warms.index(float(r["warm_start"]))
+        y = cases.index((r["method"], r["budget"], float(r["mass_ratio"])))
+        right.add_patch(plt.Rectangle((x - 0.5, y - 0.5), 1, 1, color=VERDICT_COLOUR[r["verdict"]]))
+        right.text(x, y, f"{r['verdict']}, {r['contacts']} contacts", ha="center", va="center", fontsize=7)
+    right.set_xlim(-0.5, len(warms) - 0.5)
+    right.set_ylim(-0.5, len(cases) - 0.5)
+    right.set_xticks(range(len(warms)), [f"{w:g}" for w in warms])
+    right.set_yticks(range(len(cases)), [f"{m}, {budget_label(b)}, 1:{q:g}" for m, b, q in cases], fontsize=7)
+    right.set_xlabel("warm start")
+    right.set_title("ten-sphere column (10 contacts when it stands)")
+    fig.suptitle(f"Warm start against accuracy and stability, on {rows[0]['gpu']}")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
 def plot_stability(rows, out):
     plt = pyplot()
     rows = [r for r in rows if r["scene"] == "column" and r["budget"].startswith("tol")]
     methods = sorted({r["method"] for r in rows})
     dts = sorted({float(r["dt"]) for r in rows})
     ratios = sorted({float(r["mass_ratio"]) for r in rows})
-    colour = {"converged": "#6cc26c", "capped": "#f0c040", "diverged": "#e05050"}
     cols = min(2, len(methods))
     grid_rows = (len(methods) + cols - 1) // cols
     fig, axes = plt.subplots(grid_rows, cols, figsize=(6.5 * cols, 4.2 * grid_rows), squeeze=False)
@@ -90,7 +131,7 @@ def plot_stability(rows, out):
             if r["method"] != m:
                 continue
             x, y = dts.index(float(r["dt"])), ratios.index(float(r["mass_ratio"]))
-            ax.add_patch(plt.Rectangle((x - 0.5, y - 0.5), 1, 1, color=colour[r["verdict"]]))
+            ax.add_patch(plt.Rectangle((x - 0.5, y - 0.5), 1, 1, color=VERDICT_COLOUR[r["verdict"]]))
             ax.text(x, y, f"{r['verdict']}\n{float(r['iterations_mean']):.0f} it\n{100 * float(r['max_penetration']):.3f}%",
                     ha="center", va="center", fontsize=7)
         ax.set_xlim(-0.5, len(dts) - 0.5)
@@ -107,14 +148,14 @@ def plot_stability(rows, out):
 
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("chart", choices=["pile", "stability"])
+    ap.add_argument("chart", choices=["pile", "stability", "warm"])
     ap.add_argument("csv", nargs="+")
     ap.add_argument("-o", "--out", required=True)
     a = ap.parse_args(argv)
     rows = read(a.csv)
     if not rows:
         sys.exit("plot_atlas: no rows in " + ", ".join(a.csv))
-    (plot_pile if a.chart == "pile" else plot_stability)(rows, a.out)
+    {"pile": plot_pile, "stability": plot_stability, "warm": plot_warm}[a.chart](rows, a.out)
     print("wrote", a.out)
 
 
