@@ -85,10 +85,10 @@ struct NoStart {
 
 // run(start, program, count, width, stream) queues `start` and `count`
 // iterations of `program` (the last one called with last = true) as one
-// cooperative kernel of at most
-// one block per `persistent_block_size` indices of `width` (the longest phase)
-// and no more blocks than the GPU holds at once. GPU only: available() says
-// whether it can run here (nvcc and a device with cooperative launch).
+// cooperative kernel of at most one block per `persistent_block_size` indices
+// of `width` (the longest phase) and no more blocks than the GPU holds at once.
+// GPU only: available() says whether it can run here (nvcc and a device with
+// cooperative launch).
 template <class Device, class T>
 class PersistentLoop {
  public:
