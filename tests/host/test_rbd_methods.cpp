@@ -2,6 +2,7 @@
 // friction cone (a sphere sliding in any direction), impulses inside their cone,
 // and a column of alternating light and heavy spheres, for Jacobi, coloured
 // Gauss-Seidel, APGD, substepping and APGD with CG steps (cone friction only).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <set>
@@ -54,6 +55,52 @@ TEST_CASE("contact colouring: no colour holds two contacts of one moving body, a
   again.build(b, c.view());
   REQUIRE(again.colours() == col.colours());
   for (std::size_t p = 0; p < c.size(); ++p) REQUIRE(again.order()[p] == col.order()[p]);
+}
+
+TEST_CASE("contact grouping: each moving body's entries in entry order, the fixed bodies' behind them",
+          "[rbd_methods]") {
+  auto set = pile<double>(4, 4);
+  BodyManager<device::cpu, double> m(set);
+  m.syncDeviceFull();
+  Contacts<device::cpu, double, Frictionless> found;
+  CollisionDetection<device::cpu, double> cd;
+  cd.detect(m.device(), found, 0.02);
+  const std::size_t nc = found.size();
+  REQUIRE(nc > 200);
+  // The same contacts in reverse order: the grouping must not rely on detection's (a, b) order.
+  Contacts<device::cpu, double, Frictionless> c;
+  c.resize(nc);
+  const auto fv = found.view();
+  const auto cv = c.view();
+  for (std::size_t i = 0; i < nc; ++i) cv.a[i] = fv.a[nc - 1 - i], cv.b[i] = fv.b[nc - 1 - i];
+  const auto b = m.device().view();
+  const std::size_t nb = b.size();
+  for (int build = 0; build < 3; ++build) {  // atomic arrival order may differ per build; the result may not
+    ContactGrouping<device::cpu> grouping;
+    grouping.build(b, cv);
+    const auto g = grouping.view();
+    std::vector<std::vector<std::uint32_t>> expected(nb);
+    std::vector<std::uint32_t> fixed;
+    for (std::uint32_t e = 0; e < 2 * nc; ++e) {
+      const std::uint32_t k = (e & 1) ? cv.b[e / 2] : cv.a[e / 2];
+      (b.moving(k) ? expected[k] : fixed).push_back(e);
+    }
+    REQUIRE(fixed.size() >= 16);  // the floor's
+    for (std::size_t k = 0; k < nb; ++k) {
+      REQUIRE(g.start[k + 1] - g.start[k] == expected[k].size());
+      for (std::uint32_t r = 0; r < expected[k].size(); ++r) {
+        const std::uint32_t p = g.start[k] + r;
+        REQUIRE(g.entry[p] == expected[k][r]);
+        REQUIRE(g.rank[p] == r);
+        REQUIRE(g.slot[expected[k][r]] == p);
+      }
+    }
+    REQUIRE(g.start[nb] == 2 * nc - fixed.size());
+    std::vector<std::uint32_t> tail(&g.entry[g.start[nb]], &g.entry[0] + 2 * nc);
+    std::sort(tail.begin(), tail.end());
+    REQUIRE(tail == fixed);
+    for (std::uint32_t e : fixed) REQUIRE(g.entry[g.slot[e]] == e);
+  }
 }
 
 namespace {

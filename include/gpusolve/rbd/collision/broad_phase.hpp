@@ -1,5 +1,6 @@
-// Broad phase: a uniform hashed grid over the spheres, built with device-wide
-// sorts and scans queued on a stream (no host wait); the same kernels on both backends.
+// Broad phase: a uniform hashed grid over the spheres, built by counting the
+// spheres of each bucket and a scan, queued on a stream (no host wait); the
+// same kernels on both backends.
 #pragma once
 
 #include <cmath>
@@ -7,6 +8,8 @@
 #include <cstdint>
 
 #include <limits>
+
+#include <cuda/atomic>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
@@ -93,42 +96,46 @@ struct GridGeometry {
   }
 };
 
+// A counting sort of the spheres by bucket, in two passes around a scan of the
+// counts. A sphere's rank in its bucket comes from an atomic counter, so the
+// order within a bucket differs from run to run; the walks sort what they find,
+// so no result depends on it. (A radix sort's passes cost several microseconds
+// each at any size; these two passes are short.)
 template <class View, class T>
-struct HashSpheres {
+struct BinSpheres {  // hash[i], and rank[i] within its bucket; first[0] = 0
   View b;
   const T* cell;
   std::uint32_t mask;
-  std::uint32_t* hash;
-  std::uint32_t* index;
+  std::uint32_t *hash, *rank, *count, *first;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     const GridGeometry<T> g(cell, mask);
-    index[i] = std::uint32_t(i);
-    hash[i] = g.valid && on_grid(b, i) ? g.hash(g.coord(b.pos(i, 0)), g.coord(b.pos(i, 1)), g.coord(b.pos(i, 2)))
-                                       : mask + 1;  // past every bucket: sorts last, never searched
+    if (i == 0) first[0] = 0;
+    if (!g.valid || !on_grid(b, i)) {
+      hash[i] = mask + 1;  // past every bucket: never placed, never walked
+      return;
+    }
+    const std::uint32_t h = g.hash(g.coord(b.pos(i, 0)), g.coord(b.pos(i, 1)), g.coord(b.pos(i, 2)));
+    hash[i] = h;
+    rank[i] = cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(count[h]).fetch_add(
+        1u, cuda::std::memory_order_relaxed);
   }
 };
 
-// [start[h], end[h]): the entries of bucket h in the sorted hashes, marked
-// where the hash changes from one sorted entry p to the next; p's sphere is
-// copied to spheres[p]. The ends were cleared first, so a bucket without
-// spheres reads as empty whatever its start holds. One thread per sphere and
-// no search, where a thread per bucket made two binary searches of log2(n)
-// dependent loads each.
+// Bucket h holds entries [first[h], first[h + 1]); sphere i goes to
+// first[hash[i]] + rank[i], with its centre and radius beside its index.
 template <class View, class T>
-struct MarkBuckets {
+struct PlaceSpheres {
   View b;
-  const std::uint32_t* hash;   // sorted
-  const std::uint32_t* index;  // body indices in that order
-  std::size_t n;
-  std::uint32_t mask;  // buckets - 1: larger hashes are off the grid
-  std::uint32_t *start, *end;
+  const std::uint32_t *hash, *rank, *first;
+  std::uint32_t mask;
+  std::uint32_t* index;
   GridSphere<T>* spheres;
-  GPUSOLVE_HD void operator()(std::size_t p) const {
-    const std::uint32_t h = hash[p];
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    const std::uint32_t h = hash[i];
     if (h > mask) return;
-    if (p == 0 || hash[p - 1] != h) start[h] = std::uint32_t(p);
-    if (p + 1 == n || hash[p + 1] != h) end[h] = std::uint32_t(p + 1);
-    spheres[p] = grid_sphere<View, T>(b, index[p]);
+    const std::uint32_t p = first[h] + rank[i];
+    index[p] = std::uint32_t(i);
+    spheres[p] = grid_sphere<View, T>(b, i);
   }
 };
 
@@ -145,8 +152,7 @@ struct NeighbourWalk {
   T margin;
   const std::uint32_t* index;    // body indices sorted by bucket
   const GridSphere<T>* spheres;  // their spheres, in that order
-  const std::uint32_t* start;    // first entry of each bucket in `index`
-  const std::uint32_t* end;      // one past its last entry
+  const std::uint32_t* bucket;   // bucket h: entries [bucket[h], bucket[h + 1]) of `index`
 
   template <class F>
   GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
@@ -164,7 +170,7 @@ struct NeighbourWalk {
     }
     std::uint32_t first[27], last[27];
     GPUSOLVE_UNROLL
-    for (int c = 0; c < 27; ++c) first[c] = start[h[c]], last[c] = end[h[c]];  // no branch between the loads
+    for (int c = 0; c < 27; ++c) first[c] = bucket[h[c]], last[c] = bucket[h[c] + 1];  // no branch between the loads
     for (int c = 0; c < 27; ++c) {
       if ((dup >> c) & 1u) continue;
       for (std::uint32_t s = first[c]; s < last[c]; ++s) {
@@ -238,25 +244,24 @@ class UniformGrid {
     n_ = b.size();
     std::uint32_t buckets = 1;
     while (buckets < 2 * n_ && buckets < (1u << 30)) buckets <<= 1;
-    int bits = 1;
-    while ((std::size_t(1) << bits) <= buckets) ++bits;  // the sentinel `buckets` included
-    for (D1<std::uint32_t>* v : {&hash_, &sorted_hash_, &index_, &sorted_index_}) detail::ensure_size(*v, n_);
+    for (D1<std::uint32_t>* v : {&hash_, &rank_, &index_}) detail::ensure_size(*v, n_);
     detail::ensure_size(spheres_, n_);
-    detail::ensure_size(start_, buckets);
-    detail::ensure_size(end_, buckets);
+    detail::ensure_size(bucket_count_, buckets);
+    detail::ensure_size(first_, buckets + 1);
     if (cell_.size_x() == 0) cell_.resize(1);
-    const Walk walk{b,           cell_.data(),   buckets - 1, margin, sorted_index_.data(), spheres_.data(),
-                    start_.data(), end_.data()};
+    const Walk walk{b, cell_.data(), buckets - 1, margin, index_.data(), spheres_.data(), first_.data()};
     if (n_ == 0) return walk;
     const Device dev{};
     algorithms_.max_into(n_, detail::SphereReach<View, T>{b, margin}, T(0), cell_.data(), stream);
-    launch(dev, n_, detail::HashSpheres<View, T>{b, cell_.data(), buckets - 1, hash_.data(), index_.data()}, stream);
-    // Stable, so bodies in one bucket stay in index order on every backend.
-    algorithms_.sort_pairs(hash_.data(), sorted_hash_.data(), index_.data(), sorted_index_.data(), n_, bits, stream);
-    end_.fill(0u, stream);
+    bucket_count_.fill(0u, stream);
     launch(dev, n_,
-           detail::MarkBuckets<View, T>{b, sorted_hash_.data(), sorted_index_.data(), n_, buckets - 1, start_.data(),
-                                        end_.data(), spheres_.data()},
+           detail::BinSpheres<View, T>{b, cell_.data(), buckets - 1, hash_.data(), rank_.data(), bucket_count_.data(),
+                                       first_.data()},
+           stream);
+    algorithms_.inclusive_sum(bucket_count_.data(), first_.data() + 1, buckets, stream);
+    launch(dev, n_,
+           detail::PlaceSpheres<View, T>{b, hash_.data(), rank_.data(), first_.data(), buckets - 1, index_.data(),
+                                         spheres_.data()},
            stream);
     return walk;
   }
@@ -305,7 +310,7 @@ class UniformGrid {
   std::size_t count() const { return count_read_; }
 
  private:
-  D1<std::uint32_t> hash_, sorted_hash_, index_, sorted_index_, count_, offset_, start_, end_;
+  D1<std::uint32_t> hash_, rank_, index_, bucket_count_, first_, count_, offset_;
   D1<detail::GridSphere<T>> spheres_;
   D1<std::uint64_t> pairs_;
   D1<T> cell_;

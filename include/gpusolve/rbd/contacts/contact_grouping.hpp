@@ -5,8 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include <thrust/binary_search.h>
-#include <thrust/execution_policy.h>
+#include <cuda/atomic>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
@@ -20,34 +19,46 @@ namespace gpusolve::rbd {
 namespace detail {
 
 // Kernels of ContactGrouping::build (namespace scope: nvcc rejects private
-// nested types as kernel template arguments).
+// nested types as kernel template arguments): a counting sort by body. Entries
+// arrive in their segment in any order (an atomic counter); each then finds its
+// rank among the segment's entries by counting those with a smaller index, so
+// the order is the entries' order on every run and backend. (A radix sort's
+// passes cost several microseconds each at any size; these passes are short.)
 template <class BV, class CV, class U32View>
-struct GroupKeys {
+struct GroupKeys {  // key[e], arrival[e] within its key's segment; start[0] = 0
   BV b;
   CV c;
-  U32View key, sorted;
+  U32View key, arrival, count, start;
   GPUSOLVE_HD void operator()(std::size_t e) const {
+    if (e == 0) start[0] = 0;
     const std::uint32_t k = (e & 1) ? c.b[e / 2] : c.a[e / 2];
-    key[e] = b.moving(k) ? k : static_cast<std::uint32_t>(b.size());
-    sorted[e] = static_cast<std::uint32_t>(e);
+    const std::uint32_t g = b.moving(k) ? k : static_cast<std::uint32_t>(b.size());
+    key[e] = g;
+    arrival[e] = cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(count[g]).fetch_add(
+        1u, cuda::std::memory_order_relaxed);
   }
 };
 template <class U32View>
-struct GroupRanks {
-  U32View key, sorted, start, slot, rank;
-  std::size_t bodies;
-  GPUSOLVE_HD void operator()(std::size_t p) const {
-    slot[sorted[p]] = static_cast<std::uint32_t>(p);
-    rank[p] = key[p] < bodies ? static_cast<std::uint32_t>(p - start[key[p]]) : 0u;
-  }
+struct GroupArrive {  // arrived[start[key[e]] + arrival[e]] = e
+  U32View key, arrival, start, arrived;
+  GPUSOLVE_HD void operator()(std::size_t e) const { arrived[start[key[e]] + arrival[e]] = std::uint32_t(e); }
 };
-// start[k] = the first sorted position whose key is at least k.
-struct SegmentStarts {
-  const std::uint32_t* key;  // sorted
-  std::size_t entries;
-  std::uint32_t* start;
-  GPUSOLVE_HD void operator()(std::size_t k) const {
-    start[k] = std::uint32_t(thrust::lower_bound(thrust::seq, key, key + entries, std::uint32_t(k)) - key);
+// Entries of fixed bodies keep their arrival order: no update reads them.
+template <class U32View>
+struct GroupRanks {
+  U32View key, arrival, start, arrived, sorted, slot, rank;
+  std::size_t bodies;
+  GPUSOLVE_HD void operator()(std::size_t e) const {
+    const std::uint32_t k = key[e], first = start[k];
+    std::uint32_t r = arrival[e];
+    if (k < bodies) {
+      r = 0;
+      for (std::uint32_t q = first, end = start[k + 1]; q < end; ++q) r += arrived[q] < e;
+    }
+    const std::uint32_t p = first + r;
+    sorted[p] = std::uint32_t(e);
+    slot[e] = p;
+    rank[p] = k < bodies ? r : 0u;
   }
 };
 template <class U32View>
@@ -62,7 +73,8 @@ struct SegmentLength {
 // the entries of each moving body occupy one segment [start[k], start[k+1]) of
 // the sorted order; slot[e] is e's position there and rank[p] the position's
 // offset from its segment's first entry (the thesis's reductionCount). Entries
-// of fixed bodies sort behind every segment: they receive no velocity update.
+// of fixed bodies come behind every segment, in no set order: they receive no
+// velocity update.
 template <class Device>
 class ContactGrouping {
  public:
@@ -72,7 +84,7 @@ class ContactGrouping {
   struct View {
     U32View slot;   // 2 * contacts: sorted position of each entry
     U32View rank;   // 2 * contacts: offset of a sorted position within its body's segment
-    U32View start;  // bodies + 1: first sorted position of each body's segment
+    U32View start;  // bodies + 1 (and the fixed bodies' end): first sorted position of each body's segment
     U32View entry;  // 2 * contacts: the entry at each sorted position (contact = entry / 2)
     std::size_t bodies;
   };
@@ -82,18 +94,26 @@ class ContactGrouping {
   template <class BV, class CV>
   void build(const BV& b, const CV& c, stream_t stream = stream_t{}) {
     const std::size_t entries = 2 * c.size(), nb = b.size();
-    for (U32* v : {&key_, &entry_, &sorted_key_, &sorted_, &slot_, &rank_}) detail::ensure_size(*v, entries);
-    detail::ensure_size(start_, nb + 1);
+    for (U32* v : {&key_, &arrival_, &arrived_, &sorted_, &slot_, &rank_}) detail::ensure_size(*v, entries);
+    detail::ensure_size(count_, nb + 1);  // keys 0 ... nb: nb gathers the fixed bodies' entries
+    detail::ensure_size(start_, nb + 2);
     bodies_ = nb;
     max_segment_known_ = false;
-    int bits = 1;
-    while ((std::size_t(1) << bits) <= nb) ++bits;  // keys 0 ... nb
+    if (entries == 0) {
+      start_.fill(0u, stream);
+      stream_ = stream;
+      return;
+    }
     const Device dev{};
-    launch(dev, entries, detail::GroupKeys<BV, CV, U32View>{b, c, key_.view(), entry_.view()}, stream);
-    algorithms_.sort_pairs(key_.data(), sorted_key_.data(), entry_.data(), sorted_.data(), entries, bits, stream);
-    launch(dev, nb + 1, detail::SegmentStarts{sorted_key_.data(), entries, start_.data()}, stream);
+    count_.fill(0u, stream);
+    launch(dev, entries, detail::GroupKeys<BV, CV, U32View>{b, c, key_.view(), arrival_.view(), count_.view(), start_.view()},
+           stream);
+    algorithms_.inclusive_sum(count_.data(), start_.data() + 1, nb + 1, stream);
+    launch(dev, entries, detail::GroupArrive<U32View>{key_.view(), arrival_.view(), start_.view(), arrived_.view()},
+           stream);
     launch(dev, entries,
-           detail::GroupRanks<U32View>{sorted_key_.view(), sorted_.view(), start_.view(), slot_.view(), rank_.view(), nb},
+           detail::GroupRanks<U32View>{key_.view(), arrival_.view(), start_.view(), arrived_.view(), sorted_.view(),
+                                       slot_.view(), rank_.view(), nb},
            stream);
     stream_ = stream;
   }
@@ -117,7 +137,7 @@ class ContactGrouping {
   }
 
  private:
-  U32 key_, entry_, sorted_key_, sorted_, slot_, rank_, start_;
+  U32 key_, arrival_, arrived_, sorted_, slot_, rank_, count_, start_;
   detail::DeviceAlgorithms<Device> algorithms_;
   stream_t stream_{};
   std::size_t bodies_ = 0, max_segment_ = 0;
