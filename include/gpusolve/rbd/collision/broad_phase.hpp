@@ -140,7 +140,7 @@ struct PlaceSpheres {
 };
 
 // Visits every grid sphere j > i near sphere i, in the 27 cells around i's,
-// in bucket order. A bucket two neighbour cells hash to is visited once;
+// in bucket order: visit(j, its packed sphere). A bucket two neighbour cells hash to is visited once;
 // spheres that share a bucket only by a hash collision fail the distance test.
 // A walk is a chain of dependent loads: the 27 buckets' ranges are loaded
 // together, and an entry's index and sphere are independent loads.
@@ -175,7 +175,8 @@ struct NeighbourWalk {
       if ((dup >> c) & 1u) continue;
       for (std::uint32_t s = first[c]; s < last[c]; ++s) {
         const std::uint32_t j = index[s];
-        if (j > i && spheres_near(me, spheres[s], margin)) visit(j);
+        const GridSphere<T> other = spheres[s];
+        if (j > i && spheres_near(me, other, margin)) visit(j, other);
       }
     }
   }
@@ -187,7 +188,7 @@ struct CountPairs {
   std::uint32_t* count;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     std::uint32_t c = 0;
-    walk(i, [&c](std::uint32_t) { ++c; });
+    walk(i, [&c](std::uint32_t, const auto&) { ++c; });
     count[i] = c;
   }
 };
@@ -207,7 +208,7 @@ struct WritePairs {
     const std::uint32_t first = offset[i] - count[i], last = offset[i];
     if (last > capacity) return;
     std::uint32_t o = first;
-    walk(i, [&](std::uint32_t j) { pairs[o++] = pair_key(std::uint32_t(i), j); });
+    walk(i, [&](std::uint32_t j, const auto&) { pairs[o++] = pair_key(std::uint32_t(i), j); });
     for (std::uint32_t p = first + 1; p < last; ++p) {  // insertion sort
       const std::uint64_t key = pairs[p];
       std::uint32_t q = p;

@@ -35,7 +35,9 @@ struct IsObstacle {  // a plane or box taking part
 // The contacts of sphere i as body a: its grid neighbours j > i (a fixed
 // sphere only with active ones) and the obstacles (active spheres only),
 // those whose gap is below the margin. visit(j) meets them in the grid's
-// order; geometry(i, j) is their contact geometry.
+// order; geometry(i, j) is their contact geometry. A grid neighbour's gap is
+// computed from the grid's packed copies of the two spheres (the same floats
+// as geometry's), so the walk loads nothing more of j.
 template <class View, class T>
 struct ContactWalk {
   View b;
@@ -61,8 +63,12 @@ struct ContactWalk {
   GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
     if (!on_grid(b, i)) return;
     const bool active_a = b.status[i] == active;
-    grid(i, [&](std::uint32_t j) {
-      if ((active_a || b.status[j] == active) && geometry(i, j).gap < margin) visit(j);
+    const GridSphere<T> me = grid_sphere<View, T>(b, i);
+    const math::Vector3<T> pa(me.x[0], me.x[1], me.x[2]);
+    grid(i, [&](std::uint32_t j, const GridSphere<T>& o) {
+      if ((active_a || b.status[j] == active) &&
+          sphere_sphere(pa, me.r, math::Vector3<T>(o.x[0], o.x[1], o.x[2]), o.r).gap < margin)
+        visit(j);
     });
     if (!active_a) return;
     for (std::uint32_t k = 0; k < *obstacle_count; ++k)
