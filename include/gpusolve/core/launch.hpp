@@ -48,16 +48,21 @@ inline int sm_count() {
 }  // namespace detail
 
 inline constexpr unsigned launch_block_size = 256;
+// The block size of a launch too small to give every SM a block of
+// launch_block_size: a small scene's walks and updates are chains of dependent
+// loads, and spread over all SMs they share fewer load units and L1 caches.
+inline constexpr unsigned launch_small_block_size = 64;
 
 // Calls f(i) for every i in [0, n) in a CUDA kernel on `stream`; the launch is
 // checked, the kernel runs asynchronously.
 template <class F>
 void launch(device::gpu, std::size_t n, F f, stream_t stream = stream_t{}) {
   if (n == 0) return;
-  const std::size_t wanted = (n + launch_block_size - 1) / launch_block_size;
-  const std::size_t cap = static_cast<std::size_t>(detail::sm_count()) * 32;
+  const std::size_t sms = static_cast<std::size_t>(detail::sm_count());
+  const unsigned block = n < sms * launch_block_size ? launch_small_block_size : launch_block_size;
+  const std::size_t wanted = (n + block - 1) / block, cap = sms * 32;
   const unsigned blocks = static_cast<unsigned>(wanted < cap ? wanted : cap);
-  detail::for_each_index_kernel<<<blocks, launch_block_size, 0, stream>>>(n, f);
+  detail::for_each_index_kernel<<<blocks, block, 0, stream>>>(n, f);
   GPUSOLVE_CUDA_CHECK(cudaGetLastError());
 }
 #else
