@@ -240,7 +240,9 @@ class UniformGrid {
   // Queues the grid's rebuild. Afterwards, in stream order, cell() holds the
   // cell size (+inf when a radius or the margin is not finite) and walk(b,
   // margin) visits each sphere's near neighbours in kernels (NeighbourWalk).
-  Walk queue_grid(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}) {
+  // A caller that reduces the bodies itself may pass `cell`, where its
+  // reduction leaves SphereReach's maximum in stream order; cell() is then that.
+  Walk queue_grid(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}, const T* cell = nullptr) {
     const View b = bodies.view();
     n_ = b.size();
     std::uint32_t buckets = 1;
@@ -250,13 +252,14 @@ class UniformGrid {
     detail::ensure_size(bucket_count_, buckets);
     detail::ensure_size(first_, buckets + 1);
     if (cell_.size_x() == 0) cell_.resize(1);
-    const Walk walk{b, cell_.data(), buckets - 1, margin, index_.data(), spheres_.data(), first_.data()};
+    cell_used_ = cell ? cell : cell_.data();
+    const Walk walk{b, cell_used_, buckets - 1, margin, index_.data(), spheres_.data(), first_.data()};
     if (n_ == 0) return walk;
     const Device dev{};
-    algorithms_.max_into(n_, detail::SphereReach<View, T>{b, margin}, T(0), cell_.data(), stream);
+    if (!cell) algorithms_.max_into(n_, detail::SphereReach<View, T>{b, margin}, T(0), cell_.data(), stream);
     bucket_count_.fill(0u, stream);
     launch(dev, n_,
-           detail::BinSpheres<View, T>{b, cell_.data(), buckets - 1, hash_.data(), rank_.data(), bucket_count_.data(),
+           detail::BinSpheres<View, T>{b, cell_used_, buckets - 1, hash_.data(), rank_.data(), bucket_count_.data(),
                                        first_.data()},
            stream);
     algorithms_.inclusive_sum(bucket_count_.data(), first_.data() + 1, buckets, stream);
@@ -306,7 +309,7 @@ class UniformGrid {
   const std::uint32_t* pair_end() const { return offset_.data(); }  // per sphere, inclusive scan of the counts
   const std::uint32_t* pair_count_of() const { return count_.data(); }
   const std::uint32_t* pair_count() const { return n_ ? offset_.data() + (n_ - 1) : nullptr; }
-  const T* cell() const { return cell_.data(); }
+  const T* cell() const { return cell_used_; }
   // The count find_pairs() returned.
   std::size_t count() const { return count_read_; }
 
@@ -315,6 +318,7 @@ class UniformGrid {
   D1<detail::GridSphere<T>> spheres_;
   D1<std::uint64_t> pairs_;
   D1<T> cell_;
+  const T* cell_used_ = nullptr;
   detail::DeviceAlgorithms<Device> algorithms_;
   std::size_t n_ = 0, count_read_ = 0;
 };

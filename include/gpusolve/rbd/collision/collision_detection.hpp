@@ -171,13 +171,35 @@ struct DetectionKey {
   T margin, mu;
 };
 
+// One reduction over the bodies for the grid's cell size (SphereReach's
+// maximum) and the first body whose state is not finite (NonFiniteKey's
+// minimum), where two would each evaluate and reduce.
+template <class T>
+struct BodyScan {
+  T cell;
+  std::uint64_t non_finite;
+};
+template <class View, class T>
+struct ScanBody {
+  SphereReach<View, T> reach;
+  NonFiniteKey<View> key;
+  GPUSOLVE_HD BodyScan<T> operator()(std::size_t i) const { return {reach(i), key(i)}; }
+};
+struct BodyScanOp {
+  template <class T>
+  GPUSOLVE_HD BodyScan<T> operator()(const BodyScan<T>& x, const BodyScan<T>& y) const {
+    return {MaxOp{}(x.cell, y.cell), MinOp{}(x.non_finite, y.non_finite)};
+  }
+};
+
 template <class T>
 struct Summarize {
   const std::uint32_t* contacts;
-  const T* cell;
-  const std::uint64_t* non_finite;
+  const BodyScan<T>* scan;
   DetectionSummary<T>* out;
-  GPUSOLVE_HD void operator()(std::size_t) const { *out = DetectionSummary<T>{*contacts, *cell, *non_finite}; }
+  GPUSOLVE_HD void operator()(std::size_t) const {
+    *out = DetectionSummary<T>{*contacts, scan->cell, scan->non_finite};
+  }
 };
 
 }  // namespace detail
@@ -215,7 +237,7 @@ class CollisionDetection {
     detail::ensure_size(offset_, n);
     detail::ensure_size(kept_, detail::kept_contacts * n);
     detail::ensure_size(summary_, 1);
-    detail::ensure_size(non_finite_, 1);
+    detail::ensure_size(scan_, 1);
     if (contacts.capacity() < 4 * n) contacts.resize(4 * n);
     for (;;) {
       contacts.resize(contacts.capacity());  // written up to the capacity, trimmed below
@@ -253,9 +275,9 @@ class CollisionDetection {
     const View b = bodies.view();
     const std::size_t n = b.size();
     const Device dev{};
-    const auto grid = grid_.queue_grid(bodies, margin, stream);
-    algorithms_.reduce_into(n, detail::NonFiniteKey<View>{b}, ~std::uint64_t(0), detail::MinOp{}, non_finite_.data(),
-                            stream);
+    algorithms_.reduce_into(n, detail::ScanBody<View, T>{{b, margin}, {b}}, detail::BodyScan<T>{T(0), ~std::uint64_t(0)},
+                            detail::BodyScanOp{}, scan_.data(), stream);
+    const auto grid = grid_.queue_grid(bodies, margin, stream, &scan_.data()->cell);
     algorithms_.select_indices(n, detail::IsObstacle<View>{b}, obstacles_.data(), obstacle_count_.data(), stream);
     using Walk = detail::ContactWalk<View, T>;
     const Walk walk{b, margin, grid, obstacles_.data(), obstacle_count_.data()};
@@ -263,13 +285,12 @@ class CollisionDetection {
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
     launch(dev, n, detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), kept_.data(), n, c, mu},
            stream);
-    launch(dev, 1, detail::Summarize<T>{offset_.data() + (n - 1), grid_.cell(), non_finite_.data(), summary_.data()},
-           stream);
+    launch(dev, 1, detail::Summarize<T>{offset_.data() + (n - 1), scan_.data(), summary_.data()}, stream);
   }
 
   UniformGrid<Device, T> grid_;
   D1<std::uint32_t> obstacles_, obstacle_count_, count_, offset_, kept_;
-  D1<std::uint64_t> non_finite_;
+  D1<detail::BodyScan<T>> scan_;
   D1<detail::DetectionSummary<T>> summary_;
   detail::DeviceAlgorithms<Device> algorithms_;
   detail::GraphReplay<Device> graph_;
