@@ -9,6 +9,8 @@
 
 #include <limits>
 
+#include <cuda/atomic>
+
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
@@ -26,10 +28,19 @@
 namespace gpusolve::rbd {
 namespace detail {
 
+// Appends body i to the obstacles when it is a plane or box taking part. The
+// list's order differs from run to run (an atomic counter, cleared before);
+// contacts come out sorted by b whatever the order a walk meets them in.
 template <class View>
-struct IsObstacle {  // a plane or box taking part
+struct ListObstacles {
   View b;
-  GPUSOLVE_HD bool operator()(std::uint32_t i) const { return b.shape[i] != sphere && b.status[i] != removed; }
+  std::uint32_t *obstacles, *count;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    if (b.shape[i] == sphere || b.status[i] == removed) return;
+    const std::uint32_t k =
+        cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(*count).fetch_add(1u, cuda::std::memory_order_relaxed);
+    obstacles[k] = std::uint32_t(i);
+  }
 };
 
 // The contacts of sphere i as body a: its grid neighbours j > i (a fixed
@@ -43,7 +54,7 @@ struct ContactWalk {
   View b;
   T margin;
   NeighbourWalk<View, T> grid;
-  const std::uint32_t* obstacles;       // sorted body indices
+  const std::uint32_t* obstacles;       // body indices (ListObstacles)
   const std::uint32_t* obstacle_count;  // their number
 
   GPUSOLVE_HD ContactGeometry<T> geometry(std::size_t i, std::uint32_t j) const {
@@ -278,7 +289,8 @@ class CollisionDetection {
     algorithms_.reduce_into(n, detail::ScanBody<View, T>{{b, margin}, {b}}, detail::BodyScan<T>{T(0), ~std::uint64_t(0)},
                             detail::BodyScanOp{}, scan_.data(), stream);
     const auto grid = grid_.queue_grid(bodies, margin, stream, &scan_.data()->cell);
-    algorithms_.select_indices(n, detail::IsObstacle<View>{b}, obstacles_.data(), obstacle_count_.data(), stream);
+    obstacle_count_.fill(0u, stream);
+    launch(dev, n, detail::ListObstacles<View>{b, obstacles_.data(), obstacle_count_.data()}, stream);
     using Walk = detail::ContactWalk<View, T>;
     const Walk walk{b, margin, grid, obstacles_.data(), obstacle_count_.data()};
     launch(dev, n, detail::CountContacts<Walk>{walk, count_.data(), kept_.data(), n}, stream);

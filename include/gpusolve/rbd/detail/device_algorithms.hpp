@@ -1,18 +1,14 @@
-// DeviceAlgorithms: the device-wide sort, scan, select and reductions of a time step,
-// queued on a stream with one temporary buffer kept between calls, so that a
-// warm step allocates nothing and never waits for the device. GPU: CUB; host:
-// sequential loops with the same results (the sort is stable on both).
+// DeviceAlgorithms: the device-wide scan and reductions of a time step, queued
+// on a stream with one temporary buffer kept between calls, so that a warm step
+// allocates nothing and never waits for the device. GPU: CUB; host: sequential
+// loops with the same results.
 #pragma once
 
-#include <algorithm>
 #include <climits>
 #include <cstddef>
 #include <cstdint>
 #include <numeric>
 #include <type_traits>
-#include <vector>
-
-#include <thrust/iterator/counting_iterator.h>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
@@ -21,10 +17,8 @@
 #include "gpusolve/core/launch.hpp"
 
 #if GPUSOLVE_HAS_NVCC
-#include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_reduce.cuh>
 #include <cub/device/device_scan.cuh>
-#include <cub/device/device_select.cuh>
 #endif
 
 namespace gpusolve::rbd::detail {
@@ -62,30 +56,6 @@ class DeviceAlgorithms {
   static constexpr bool gpu = std::is_same_v<Device, device::gpu>;
 
  public:
-  // (keys_out, values_out) = (keys_in, values_in) stably sorted by the key bits
-  // [0, end_bit); the inputs are left as they were.
-  template <class K, class V>
-  void sort_pairs(const K* keys_in, K* keys_out, const V* values_in, V* values_out, std::size_t n, int end_bit,
-                  stream_t stream) {
-    if (n == 0) return;
-    if constexpr (gpu) {
-#if GPUSOLVE_HAS_NVCC
-      run([&](void* temp, std::size_t& bytes) {
-        return cub::DeviceRadixSort::SortPairs(temp, bytes, keys_in, keys_out, values_in, values_out, items(n), 0,
-                                               end_bit, stream);
-      });
-#else
-      unsupported();
-#endif
-    } else {
-      (void)end_bit, (void)stream;
-      order_.resize(n);
-      std::iota(order_.begin(), order_.end(), std::size_t(0));
-      std::stable_sort(order_.begin(), order_.end(), [&](std::size_t x, std::size_t y) { return keys_in[x] < keys_in[y]; });
-      for (std::size_t i = 0; i < n; ++i) keys_out[i] = keys_in[order_[i]], values_out[i] = values_in[order_[i]];
-    }
-  }
-
   // out[i] = in[0] + ... + in[i].
   template <class U>
   void inclusive_sum(const U* in, U* out, std::size_t n, stream_t stream) {
@@ -101,27 +71,6 @@ class DeviceAlgorithms {
     } else {
       (void)stream;
       std::inclusive_scan(in, in + n, out);
-    }
-  }
-
-  // The indices i < n with keep(i), in increasing order, into out; their number into *count.
-  template <class Pred>
-  void select_indices(std::size_t n, Pred keep, std::uint32_t* out, std::uint32_t* count, stream_t stream) {
-    if constexpr (gpu) {
-#if GPUSOLVE_HAS_NVCC
-      const thrust::counting_iterator<std::uint32_t> first(0);
-      run([&](void* temp, std::size_t& bytes) {
-        return cub::DeviceSelect::If(temp, bytes, first, out, count, items(n), keep, stream);
-      });
-#else
-      unsupported();
-#endif
-    } else {
-      (void)stream;
-      std::uint32_t k = 0;
-      for (std::size_t i = 0; i < n; ++i)
-        if (keep(std::uint32_t(i))) out[k++] = std::uint32_t(i);
-      *count = k;
     }
   }
 
@@ -224,7 +173,6 @@ class DeviceAlgorithms {
   }
 
   VectorD1<std::uint8_t, device_is<Device>> temp_, values_;  // CUB's temporary storage; a reduction's values
-  std::vector<std::size_t> order_;  // host sort's permutation
 };
 
 }  // namespace gpusolve::rbd::detail
