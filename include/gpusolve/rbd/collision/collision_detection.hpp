@@ -127,40 +127,6 @@ struct CountContacts {
   }
 };
 
-// Writes sphere i's contacts at [offset[i] - count[i], offset[i]) in
-// increasing order of body b, unless that passes the contacts' capacity (their
-// view's size): the caller grows and repeats. The bodies come from the count
-// pass's kept list, or, for a sphere with more, from a second walk sorted in
-// place in the b column, so the list comes out in (a, b) order without a
-// global sort.
-template <class Walk, class ContactView, class T>
-struct WriteContacts {
-  Walk walk;
-  const std::uint32_t* offset;  // inclusive scan of the counts
-  const std::uint32_t* count;
-  const std::uint32_t* kept;
-  std::size_t n;
-  ContactView contacts;
-  T mu;
-  GPUSOLVE_HD void operator()(std::size_t i) const {
-    if (offset[i] > contacts.size()) return;
-    const std::uint32_t first = offset[i] - count[i], last = offset[i];
-    if (count[i] <= kept_contacts) {
-      for (std::uint32_t p = first; p < last; ++p) contacts.b[p] = kept[(p - first) * n + i];
-    } else {
-      std::uint32_t o = first;
-      walk(i, [&](std::uint32_t j) { contacts.b[o++] = j; });
-      sort_few(first, last, [&](std::uint32_t p) { return std::uint32_t(contacts.b[p]); },
-               [&](std::uint32_t p, std::uint32_t j) { contacts.b[p] = j; });
-    }
-    for (std::uint32_t p = first; p < last; ++p) {
-      const std::uint32_t j = contacts.b[p];
-      const ContactGeometry<T> g = walk.geometry(i, j);
-      contacts.set(p, std::uint32_t(i), j, g.n, g.ra, g.rb, g.gap, mu);
-    }
-  }
-};
-
 // What the host reads once per detection: the count it must size for, and
 // the cell size (not finite: a radius or the margin is not finite).
 template <class T>
@@ -168,18 +134,6 @@ struct DetectionSummary {
   std::uint32_t contacts;
   T cell;
   std::uint64_t non_finite;  // NonFiniteKey's minimum: the first body with a NaN or inf in its state
-};
-
-// What the launches of one detection depend on besides the sizes of its
-// scratch stores, which stay put while the body count does: the bodies' and
-// contacts' views (their pointers and sizes), the margin and the friction
-// coefficient. A captured graph of the detection is launched again while
-// these are the same (GraphReplay).
-template <class View, class ContactView, class T>
-struct DetectionKey {
-  View bodies;
-  ContactView contacts;
-  T margin, mu;
 };
 
 // One reduction over the bodies for the grid's cell size (SphereReach's
@@ -211,6 +165,54 @@ struct Summarize {
   GPUSOLVE_HD void operator()(std::size_t) const {
     *out = DetectionSummary<T>{*contacts, scan->cell, scan->non_finite};
   }
+};
+
+// Writes sphere i's contacts at [offset[i] - count[i], offset[i]) in
+// increasing order of body b, unless that passes the contacts' capacity (their
+// view's size): the caller grows and repeats. The bodies come from the count
+// pass's kept list, or, for a sphere with more, from a second walk sorted in
+// place in the b column, so the list comes out in (a, b) order without a
+// global sort. Sphere 0's thread also writes the summary the host reads.
+template <class Walk, class ContactView, class T>
+struct WriteContacts {
+  Walk walk;
+  const std::uint32_t* offset;  // inclusive scan of the counts
+  const std::uint32_t* count;
+  const std::uint32_t* kept;
+  std::size_t n;
+  ContactView contacts;
+  T mu;
+  Summarize<T> summarize;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    if (i == 0) summarize(0);
+    if (offset[i] > contacts.size()) return;
+    const std::uint32_t first = offset[i] - count[i], last = offset[i];
+    if (count[i] <= kept_contacts) {
+      for (std::uint32_t p = first; p < last; ++p) contacts.b[p] = kept[(p - first) * n + i];
+    } else {
+      std::uint32_t o = first;
+      walk(i, [&](std::uint32_t j) { contacts.b[o++] = j; });
+      sort_few(first, last, [&](std::uint32_t p) { return std::uint32_t(contacts.b[p]); },
+               [&](std::uint32_t p, std::uint32_t j) { contacts.b[p] = j; });
+    }
+    for (std::uint32_t p = first; p < last; ++p) {
+      const std::uint32_t j = contacts.b[p];
+      const ContactGeometry<T> g = walk.geometry(i, j);
+      contacts.set(p, std::uint32_t(i), j, g.n, g.ra, g.rb, g.gap, mu);
+    }
+  }
+};
+
+// What the launches of one detection depend on besides the sizes of its
+// scratch stores, which stay put while the body count does: the bodies' and
+// contacts' views (their pointers and sizes), the margin and the friction
+// coefficient. A captured graph of the detection is launched again while
+// these are the same (GraphReplay).
+template <class View, class ContactView, class T>
+struct DetectionKey {
+  View bodies;
+  ContactView contacts;
+  T margin, mu;
 };
 
 }  // namespace detail
@@ -295,9 +297,10 @@ class CollisionDetection {
     const Walk walk{b, margin, grid, obstacles_.data(), obstacle_count_.data()};
     launch(dev, n, detail::CountContacts<Walk>{walk, count_.data(), kept_.data(), n}, stream);
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
-    launch(dev, n, detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), kept_.data(), n, c, mu},
+    launch(dev, n,
+           detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), kept_.data(), n, c, mu,
+                                                 {offset_.data() + (n - 1), scan_.data(), summary_.data()}},
            stream);
-    launch(dev, 1, detail::Summarize<T>{offset_.data() + (n - 1), scan_.data(), summary_.data()}, stream);
   }
 
   UniformGrid<Device, T> grid_;
