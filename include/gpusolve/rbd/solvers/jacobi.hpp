@@ -68,18 +68,21 @@ struct JacobiIteration {
 // The start program of an attempt's first run: each contact's inverse block
 // and the velocity change of the impulses it starts from (`from_x`: warm
 // start, ApplyImpulses and their sums per body), then the momentum's start
-// (Momentum::start). Under a persistent kernel it costs barriers instead of
-// launches.
-template <class Blocks, class Warm, class Apply, class MomentumStart>
+// (Momentum::start); in a solve's first attempt that may be retried, the
+// velocities' copy for the retry first (`save`). Under a persistent kernel it
+// costs barriers instead of launches.
+template <class Save, class Blocks, class Warm, class Apply, class MomentumStart>
 struct AttemptStart {
+  Save save;
   Blocks blocks;
   Warm warm;
   Apply apply;
   MomentumStart momentum;
-  bool from_x;
+  bool saving, from_x;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
+    if (saving) e.each(save.b.size(), save);  // nothing in this phase writes a velocity
     e.each(warm.c.size(), blocks);
     if (from_x) e.each(warm.c.size(), warm);
     e.sync();
@@ -145,9 +148,11 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     auto attempt = [&](T omega, SolverStats<T>& st) {
       const bool warm = from_x && st.retries == 0;
       if (!warm) contacts.x.fill(T(0), stream);
-      const detail::AttemptStart<InverseBlocks<Model, BV, CV, T>, ApplyImpulses<Model, BV, CV, Sink, T>,
-                                 decltype(acc_.program(b)), decltype(momentum_.start(b, c))>
-          start{this->inverse_blocks(b, c), {b, c, acc_.sink()}, acc_.program(b), momentum_.start(b, c), warm};
+      const detail::AttemptStart<detail::CopyVelocities<BV, T>, InverseBlocks<Model, BV, CV, T>,
+                                 ApplyImpulses<Model, BV, CV, Sink, T>, decltype(acc_.program(b)),
+                                 decltype(momentum_.start(b, c))>
+          start{this->start_.saver(b), this->inverse_blocks(b, c), {b, c, acc_.sink()}, acc_.program(b),
+                momentum_.start(b, c), st.retries == 0 && s.max_retries > 0, warm};
       const auto look = momentum_.iterate();
       using Contact = JacobiContact<Model, BV, CV, Sink, T, decltype(look)>;
       const Contact plain{
@@ -188,7 +193,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
         first = last + 1;
       }
     };
-    solve_relaxed(s, omega_of<JacobiSolver>(s), b, this->start_, stats, attempt, stream);
+    solve_relaxed(s, omega_of<JacobiSolver>(s), b, this->start_, stats, attempt, stream, true);
     return stats;
   }
 

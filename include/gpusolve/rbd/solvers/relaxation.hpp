@@ -35,14 +35,24 @@ struct CopyVelocities {
 }  // namespace detail
 
 // The bodies' velocities at the start of a solve, kept on the bodies' backend
-// (no host round trip). Storage only grows.
+// (no host round trip). Storage only grows. A solver may take the copy in a
+// phase of its own first kernel instead of a launch of its own: reserve(b),
+// then run saver(b) over the bodies.
 template <class Device, class T>
 class VelocitySnapshot {
  public:
   template <class BV>
   void save(const BV& b, stream_t stream = stream_t{}) {
-    detail::ensure_size(v_, b.size(), 3), detail::ensure_size(w_, b.size(), 3);
+    reserve(b);
     copy(b, false, stream);
+  }
+  template <class BV>
+  void reserve(const BV& b) {
+    detail::ensure_size(v_, b.size(), 3), detail::ensure_size(w_, b.size(), 3);
+  }
+  template <class BV>
+  detail::CopyVelocities<BV, T> saver(const BV& b) {
+    return {b, v_.view(), w_.view(), false};
   }
   template <class BV>
   void restore(const BV& b, stream_t stream = stream_t{}) {
@@ -64,10 +74,18 @@ class VelocitySnapshot {
 // s.retry_omega_factor and runs it again. stats then holds the last attempt,
 // the omega it used, the number of retries and the iterations of all attempts.
 // Throws DivergenceError when the last attempt diverged and the settings ask for it.
+// With `first_attempt_saves` the first attempt takes the copy itself
+// (VelocitySnapshot::saver, before it changes a velocity); storage is reserved here.
 template <class Device, class T, class BV, class Attempt>
 void solve_relaxed(const SolverSettings<T>& s, T omega, const BV& b, VelocitySnapshot<Device, T>& start,
-                   SolverStats<T>& stats, Attempt&& attempt, stream_t stream = stream_t{}) {
-  if (s.max_retries > 0) start.save(b, stream);
+                   SolverStats<T>& stats, Attempt&& attempt, stream_t stream = stream_t{},
+                   bool first_attempt_saves = false) {
+  if (s.max_retries > 0) {
+    if (first_attempt_saves)
+      start.reserve(b);
+    else
+      start.save(b, stream);
+  }
   stats.omega = omega;
   for (;;) {
     stats.residuals.clear();
