@@ -1,8 +1,12 @@
 // Warm starting (warm_start.hpp, SolverSettings::warm_start) on the CPU backend:
 // fewer iterations for the same impulses, carried impulses re-expressed in the
 // new contact frame, a diverging warm start retried cold, the setting validated.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <random>
 #include <string>
+#include <vector>
 
 #include "catch_compat.hpp"
 #include "test_rbd_scenes.hpp"
@@ -119,6 +123,23 @@ TEST_CASE("warm start: a diverging warm-started solve is retried from zero impul
   REQUIRE(warm.first.status != SolverStatus::diverged);
   CHECK(warm.first.iterations == cold.first.iterations);
   CHECK(max_abs_diff(warm.second, cold.second) == 0.0);  // the retries were the same cold solve
+}
+
+TEST_CASE("warm start: the pair search from a guess finds what a binary search finds", "[rbd_warm_start]") {
+  std::mt19937 gen(3);
+  for (std::size_t count : {0, 1, 2, 3, 7, 64, 1000}) {
+    std::vector<std::uint64_t> keys(count);
+    std::uniform_int_distribution<std::uint64_t> gap(1, 5);
+    std::uint64_t k = 10;
+    for (auto& key : keys) key = k += gap(gen);
+    std::vector<std::uint64_t> probes = {0, 5, 10, k, k + 1, k + 100};
+    for (std::uint64_t q = 5; q < k + 3; q += 1 + q % 7) probes.push_back(q);
+    for (std::uint64_t key : probes) {
+      const std::size_t expected = std::size_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
+      for (std::size_t guess = 0; guess < count + 3; guess += 1 + guess / 3)
+        REQUIRE(rbd::detail::lower_bound_near(keys.data(), count, key, guess) == expected);
+    }
+  }
 }
 
 TEST_CASE("warm_start outside [0, 1] gives InvalidArgumentError naming it", "[rbd_warm_start]") {
