@@ -67,7 +67,7 @@ GPUSOLVE_HD inline std::size_t lower_bound_near(const std::uint64_t* keys, std::
 // contact's new frame, projected onto the admissible set (the normal may have
 // turned); zero for a pair that was not in contact. Both steps' contacts are
 // sorted by (a, b) and most pairs persist, so the pair is searched for from
-// the contact's own index in the previous list.
+// the contact's index scaled to the previous list's length.
 template <class Model, class CV, class T>
 struct CarryImpulse {
   CV c;
@@ -78,7 +78,7 @@ struct CarryImpulse {
   GPUSOLVE_HD void operator()(std::size_t i) const {
     constexpr std::size_t R = Model::rows;
     const std::uint64_t key = pair_key(c.a[i], c.b[i]);
-    const std::size_t j = lower_bound_near(keys, count, key, i);
+    const std::size_t j = lower_bound_near(keys, count, key, std::size_t(std::uint64_t(i) * count / c.size()));
     T x[R] = {};
     if (j < count && keys[j] == key) {
       if constexpr (R == 3) {
