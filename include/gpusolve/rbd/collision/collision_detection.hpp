@@ -37,8 +37,8 @@ struct ListObstacles {
   std::uint32_t *obstacles, *count;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     if (b.shape[i] == sphere || b.status[i] == removed) return;
-    const std::uint32_t k =
-        cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(*count).fetch_add(1u, cuda::std::memory_order_relaxed);
+    const std::uint32_t k = cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(*count).fetch_add(
+        1u, cuda::std::memory_order_relaxed);
     obstacles[k] = std::uint32_t(i);
   }
 };
@@ -288,8 +288,8 @@ class CollisionDetection {
     const View b = bodies.view();
     const std::size_t n = b.size();
     const Device dev{};
-    algorithms_.reduce_into(n, detail::ScanBody<View, T>{{b, margin}, {b}}, detail::BodyScan<T>{T(0), ~std::uint64_t(0)},
-                            detail::BodyScanOp{}, scan_.data(), stream);
+    algorithms_.reduce_into(n, detail::ScanBody<View, T>{{b, margin}, {b}},
+                            detail::BodyScan<T>{T(0), ~std::uint64_t(0)}, detail::BodyScanOp{}, scan_.data(), stream);
     const auto grid = grid_.queue_grid(bodies, margin, stream, &scan_.data()->cell);
     obstacle_count_.fill(0u, stream);
     launch(dev, n, detail::ListObstacles<View>{b, obstacles_.data(), obstacle_count_.data()}, stream);

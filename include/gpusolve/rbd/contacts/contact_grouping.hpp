@@ -106,7 +106,8 @@ class ContactGrouping {
     }
     const Device dev{};
     count_.fill(0u, stream);
-    launch(dev, entries, detail::GroupKeys<BV, CV, U32View>{b, c, key_.view(), arrival_.view(), count_.view(), start_.view()},
+    launch(dev, entries,
+           detail::GroupKeys<BV, CV, U32View>{b, c, key_.view(), arrival_.view(), count_.view(), start_.view()},
            stream);
     algorithms_.inclusive_sum(count_.data(), start_.data() + 1, nb + 1, stream);
     launch(dev, entries, detail::GroupArrive<U32View>{key_.view(), arrival_.view(), start_.view(), arrived_.view()},
