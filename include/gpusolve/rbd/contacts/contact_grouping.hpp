@@ -11,6 +11,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/detail/device_algorithms.hpp"
+#include "gpusolve/rbd/detail/launch_exec.hpp"
 #include "gpusolve/rbd/detail/reduce.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 
@@ -62,6 +63,43 @@ struct GroupRanks {
   }
 };
 template <class U32View>
+struct ZeroU32 {
+  U32View v;
+  GPUSOLVE_HD void operator()(std::size_t i) const { v[i] = 0u; }
+};
+
+// The build as a program (detail/persistent_loop.hpp's contract, with
+// e.scan): the same phases as launches, or between a persistent kernel's
+// barriers. Ends with e.sync().
+template <class BV, class CV, class U32View>
+struct GroupingBuild {
+  GroupKeys<BV, CV, U32View> keys;
+  GroupArrive<U32View> arrive;
+  GroupRanks<U32View> ranks;
+  U32View count;
+  std::size_t entries, bodies;
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e) const {
+    if (entries == 0) {
+      e.each(bodies + 2, ZeroU32<U32View>{ranks.start});
+      e.sync();
+      return;
+    }
+    e.each(bodies + 1, ZeroU32<U32View>{count});
+    e.sync();
+    e.each(entries, keys);
+    e.sync();
+    e.scan(count.data(), ranks.start.data() + 1, bodies + 1);
+    e.sync();
+    e.each(entries, arrive);
+    e.sync();
+    e.each(entries, ranks);
+    e.sync();
+  }
+};
+
+template <class U32View>
 struct SegmentLength {
   U32View start;
   GPUSOLVE_HD std::uint32_t operator()(std::size_t k) const { return start[k + 1] - start[k]; }
@@ -93,30 +131,25 @@ class ContactGrouping {
   // `stream`, without a host wait or an allocation once warm.
   template <class BV, class CV>
   void build(const BV& b, const CV& c, stream_t stream = stream_t{}) {
+    program(b, c, stream)(detail::LaunchExec<Device, std::uint32_t>{stream, &algorithms_});
+  }
+  // build() as a program whose phases the caller runs (a solver's persistent
+  // kernel); storage is sized here, on the host.
+  template <class BV, class CV>
+  detail::GroupingBuild<BV, CV, U32View> program(const BV& b, const CV& c, stream_t stream = stream_t{}) {
     const std::size_t entries = 2 * c.size(), nb = b.size();
     for (U32* v : {&key_, &arrival_, &arrived_, &sorted_, &slot_, &rank_}) detail::ensure_size(*v, entries);
     detail::ensure_size(count_, nb + 1);  // keys 0 ... nb: nb gathers the fixed bodies' entries
     detail::ensure_size(start_, nb + 2);
     bodies_ = nb;
     max_segment_known_ = false;
-    if (entries == 0) {
-      start_.fill(0u, stream);
-      stream_ = stream;
-      return;
-    }
-    const Device dev{};
-    count_.fill(0u, stream);
-    launch(dev, entries,
-           detail::GroupKeys<BV, CV, U32View>{b, c, key_.view(), arrival_.view(), count_.view(), start_.view()},
-           stream);
-    algorithms_.inclusive_sum(count_.data(), start_.data() + 1, nb + 1, stream);
-    launch(dev, entries, detail::GroupArrive<U32View>{key_.view(), arrival_.view(), start_.view(), arrived_.view()},
-           stream);
-    launch(dev, entries,
-           detail::GroupRanks<U32View>{key_.view(), arrival_.view(), start_.view(), arrived_.view(), sorted_.view(),
-                                       slot_.view(), rank_.view(), nb},
-           stream);
     stream_ = stream;
+    return {{b, c, key_.view(), arrival_.view(), count_.view(), start_.view()},
+            {key_.view(), arrival_.view(), start_.view(), arrived_.view()},
+            {key_.view(), arrival_.view(), start_.view(), arrived_.view(), sorted_.view(), slot_.view(), rank_.view(), nb},
+            count_.view(),
+            entries,
+            nb};
   }
 
   View view() { return View{slot_.view(), rank_.view(), start_.view(), sorted_.view(), bodies_}; }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
@@ -12,9 +13,9 @@ namespace gpusolve::rbd::detail {
 
 // each(n, f): f(i) for i in [0, n) as one kernel (a loop on the host); sync():
 // nothing, stream order already separates the launches; reduce(n, f, init, op,
-// out) and sum(n, f, out): into *out (backend memory) through the
-// DeviceAlgorithms it was given, whose kept buffers a program that is captured
-// into a graph must have reserved (reserve_reduce).
+// out), sum(n, f, out) and scan(in, out, n): through the DeviceAlgorithms it
+// was given, whose kept buffers a program that is captured into a graph must
+// have reserved (reserve_reduce).
 template <class Device, class T>
 struct LaunchExec {
   stream_t stream;
@@ -32,6 +33,9 @@ struct LaunchExec {
   template <class F>
   void sum(std::size_t n, const F& f, T* out) const {
     reduce(n, f, T(0), PlusOp{}, out);
+  }
+  void scan(const std::uint32_t* in, std::uint32_t* out, std::size_t n) const {
+    algorithms->inclusive_sum(in, out, n, stream);
   }
 };
 

@@ -7,7 +7,8 @@
 // e.reduce(n, f, init, op, out) writes init op f(0) op ... op f(n - 1) to *out,
 // which index 0 of the next e.each reads at once and every index after the next
 // e.sync() (the reduction costs one barrier, not two), and e.sum(n, f, out) is
-// its sum. It ends with e.sync(). A start program start(e) queues phases the
+// its sum; e.scan(in, out, n) writes the inclusive prefix sums of the
+// std::uint32_t in[0, n) to out, read after the next e.sync(). It ends with e.sync(). A start program start(e) queues phases the
 // same way, before the first iteration of a run, and ends with e.sync() if it
 // queued any. The same programs run under two executors: LaunchExec
 // (launch_exec.hpp, a launch per phase, both backends) and GridExec here
@@ -15,6 +16,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <type_traits>
 
 #include "gpusolve/container/vector_d1.hpp"
@@ -27,6 +29,7 @@
 #if GPUSOLVE_HAS_NVCC
 #include <cooperative_groups.h>
 #include <cub/block/block_reduce.cuh>
+#include <cub/block/block_scan.cuh>
 #endif
 
 namespace gpusolve::rbd::detail {
@@ -36,9 +39,12 @@ inline constexpr unsigned persistent_block_size = 256;
 #if GPUSOLVE_HAS_NVCC
 // The executor inside the cooperative kernel. Its sum is deterministic: each
 // block reduces its strided share, block 0 adds the blocks' partials in order.
+// Its scan: each block scans a contiguous share, then adds the totals of the
+// blocks before it.
 template <class T>
 struct GridExec {
-  T* partials;  // one per block
+  T* partials;                 // one per block
+  std::uint32_t* scan_totals;  // one per block
 
   template <class F>
   __device__ void each(std::size_t n, const F& f) const {
@@ -66,12 +72,39 @@ struct GridExec {
   __device__ void sum(std::size_t n, const F& f, T* out) const {
     reduce(n, f, T(0), PlusOp{}, out);
   }
+  __device__ void scan(const std::uint32_t* in, std::uint32_t* out, std::size_t n) const {
+    using Scan = cub::BlockScan<std::uint32_t, persistent_block_size>;
+    using Sum = cub::BlockReduce<std::uint32_t, persistent_block_size>;
+    __shared__ typename Scan::TempStorage scan_temp;
+    __shared__ typename Sum::TempStorage sum_temp;
+    const std::size_t share = (n + gridDim.x - 1) / gridDim.x;
+    const std::size_t lo = blockIdx.x * share < n ? blockIdx.x * share : n, hi = lo + share < n ? lo + share : n;
+    std::uint32_t running = 0;
+    for (std::size_t base = lo; base < hi; base += blockDim.x) {  // the same trips for the whole block
+      const std::size_t i = base + threadIdx.x;
+      std::uint32_t x = i < hi ? in[i] : 0u, total = 0;
+      Scan(scan_temp).InclusiveSum(x, x, total);
+      if (i < hi) out[i] = running + x;
+      running += total;
+      __syncthreads();  // scan_temp is reused
+    }
+    if (threadIdx.x == 0) scan_totals[blockIdx.x] = running;
+    sync();
+    std::uint32_t before = 0;
+    for (unsigned k = threadIdx.x; k < blockIdx.x; k += blockDim.x) before += scan_totals[k];
+    before = Sum(sum_temp).Sum(before);
+    __shared__ std::uint32_t offset;
+    if (threadIdx.x == 0) offset = before;
+    __syncthreads();
+    for (std::size_t i = lo + threadIdx.x; i < hi; i += blockDim.x) out[i] += offset;
+  }
 };
 
 template <class Start, class Program, class T>
 __global__ void __launch_bounds__(persistent_block_size)
-    persistent_iterations_kernel(Start start, Program program, std::size_t count, T* partials) {
-  const GridExec<T> e{partials};
+    persistent_iterations_kernel(Start start, Program program, std::size_t count, T* partials,
+                                 std::uint32_t* scan_totals) {
+  const GridExec<T> e{partials, scan_totals};
   start(e);
   for (std::size_t k = 1; k <= count; ++k) program(e, k == count);
 }
@@ -122,8 +155,10 @@ class PersistentLoop {
       const std::size_t resident = static_cast<std::size_t>(per_sm) * static_cast<std::size_t>(gpusolve::detail::sm_count());
       const std::size_t blocks = wanted == 0 ? 1 : (wanted < resident ? wanted : resident);
       if (partials_.size_x() < blocks) partials_.resize(blocks);
+      if (scan_totals_.size_x() < blocks) scan_totals_.resize(blocks);
       T* partials = partials_.data();
-      void* args[] = {const_cast<Start*>(&start), const_cast<Program*>(&program), &count, &partials};
+      std::uint32_t* scan_totals = scan_totals_.data();
+      void* args[] = {const_cast<Start*>(&start), const_cast<Program*>(&program), &count, &partials, &scan_totals};
       GPUSOLVE_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(kernel), dim3(unsigned(blocks)),
                                                       dim3(persistent_block_size), args, 0, stream));
       return;
@@ -135,6 +170,7 @@ class PersistentLoop {
 
  private:
   VectorD1<T, device_is<Device>> partials_;
+  VectorD1<std::uint32_t, device_is<Device>> scan_totals_;
 };
 
 }  // namespace gpusolve::rbd::detail

@@ -13,6 +13,7 @@
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/contacts/contact_grouping.hpp"
 #include "gpusolve/rbd/detail/launch_exec.hpp"
+#include "gpusolve/rbd/detail/persistent_loop.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
 #include "gpusolve/rbd/solvers/iterate.hpp"
@@ -39,6 +40,10 @@ struct Gather {};
 // velocities as they are): apply() runs it with a launch per phase, a
 // persistent kernel runs it between barriers. Its last phase is left open (no
 // sync at the end): the caller may add work that does not touch the velocities to it.
+// prepare_program(b, c, stream) is prepare() as a start program, for a solver
+// that runs it in its own first kernel: Gather's grouping is built there; the
+// other strategies prepare at once (UpdateCache's host needs its pass count)
+// and return an empty program.
 template <class Strategy, class Device, class T>
 class Accumulator;
 
@@ -174,10 +179,13 @@ class CacheStore {
  public:
   template <class BV, class CV>
   void prepare(const BV& b, const CV& c, stream_t stream) {
+    size_for(c);
     grouping_.build(b, c, stream);
-    ensure_size(dv_, 2 * c.size(), 3);
-    ensure_size(dw_, 2 * c.size(), 3);
-    entries_ = 2 * c.size();
+  }
+  template <class BV, class CV>
+  auto prepare_program(const BV& b, const CV& c, stream_t stream) {
+    size_for(c);
+    return grouping_.program(b, c, stream);
   }
   CacheSink<T> sink() { return CacheSink<T>{dv_.view(), dw_.view(), grouping_.view().slot}; }
  protected:
@@ -190,6 +198,14 @@ class CacheStore {
   ContactGrouping<Device> grouping_;
   Vec3Store<Device, T> dv_, dw_;
   std::size_t entries_ = 0;
+
+ private:
+  template <class CV>
+  void size_for(const CV& c) {
+    ensure_size(dv_, 2 * c.size(), 3);
+    ensure_size(dw_, 2 * c.size(), 3);
+    entries_ = 2 * c.size();
+  }
 };
 
 }  // namespace detail
@@ -198,6 +214,11 @@ template <class Device, class T>
 class Accumulator<UpdateCache, Device, T> : public detail::CacheStore<Device, T> {
  public:
   std::size_t passes() { return this->grouping_.passes(); }  // waits for the grouping once per step
+  template <class BV, class CV>
+  detail::NoStart prepare_program(const BV& b, const CV& c, stream_t stream) {
+    this->prepare(b, c, stream);
+    return {};
+  }
   template <class BV, class Iterate = detail::CurrentIterate<T>>
   detail::CacheApply<BV, T, false, Iterate> program(const BV& b, const Iterate& it = Iterate{}) {
     return this->template cache_program<false>(b, passes(), it);
@@ -229,6 +250,11 @@ class Accumulator<Atomic, Device, T> {
   void prepare(const BV& b, const CV&, stream_t stream = stream_t{}) {
     if (!detail::ensure_size(dv_, b.size(), 3)) dv_.fill(T(0), stream);  // a new store is zero already
     if (!detail::ensure_size(dw_, b.size(), 3)) dw_.fill(T(0), stream);
+  }
+  template <class BV, class CV>
+  detail::NoStart prepare_program(const BV& b, const CV& c, stream_t stream) {
+    prepare(b, c, stream);
+    return {};
   }
   detail::AtomicSink<T> sink() { return detail::AtomicSink<T>{dv_.view(), dw_.view()}; }
   template <class BV, class Iterate = detail::CurrentIterate<T>>

@@ -68,20 +68,23 @@ struct JacobiIteration {
 // The start program of an attempt's first run: each contact's inverse block
 // and the velocity change of the impulses it starts from (`from_x`: warm
 // start, ApplyImpulses and their sums per body), then the momentum's start
-// (Momentum::start); in a solve's first attempt that may be retried, the
-// velocities' copy for the retry first (`save`). Under a persistent kernel it
-// costs barriers instead of launches.
-template <class Save, class Blocks, class Warm, class Apply, class MomentumStart>
+// (Momentum::start). In a solve's first attempt, first the accumulator's
+// preparation when the solver did not launch it (`preparing`), and the
+// velocities' copy for a retry (`saving`). Under a persistent kernel it costs
+// barriers instead of launches.
+template <class Prepare, class Save, class Blocks, class Warm, class Apply, class MomentumStart>
 struct AttemptStart {
+  Prepare prepare;
   Save save;
   Blocks blocks;
   Warm warm;
   Apply apply;
   MomentumStart momentum;
-  bool saving, from_x;
+  bool preparing, saving, from_x;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
+    if (preparing) prepare(e);                // ends with e.sync()
     if (saving) e.each(save.b.size(), save);  // nothing in this phase writes a velocity
     e.each(warm.c.size(), blocks);
     if (from_x) e.each(warm.c.size(), warm);
@@ -130,7 +133,12 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     const CV c = contacts.view();
     if (!this->prepare(c, s, stats)) return stats;
     const std::size_t nc = c.size(), width = nc > b.size() ? nc : b.size();
-    acc_.prepare(b, c, stream);
+    const bool persistent = nc <= s.persistent_max_contacts && persistent_.available();
+    const detail::LaunchExec<Device, T> launched{stream, &algorithms_};
+    // The accumulator's preparation (Gather: the grouping's build) runs as the
+    // persistent kernel's first phases, or is launched here.
+    const auto prepared = acc_.prepare_program(b, c, stream);
+    if (!persistent) prepared(launched);
     stats.reduction_passes = acc_.passes();
     momentum_.begin(b, c);
     if (residual_out_.size_x() == 0) residual_out_.resize(1);
@@ -144,15 +152,22 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     using Sink = decltype(acc_.sink());
     const VectorD2View<T> rhs{};  // JacobiContact keeps each error in registers: no store
     const auto residual = this->residual_.view();
-    const detail::LaunchExec<Device, T> launched{stream, &algorithms_};
     auto attempt = [&](T omega, SolverStats<T>& st) {
       const bool warm = from_x && st.retries == 0;
       if (!warm) contacts.x.fill(T(0), stream);
-      const detail::AttemptStart<detail::CopyVelocities<BV, T>, InverseBlocks<Model, BV, CV, T>,
-                                 ApplyImpulses<Model, BV, CV, Sink, T>, decltype(acc_.program(b)),
-                                 decltype(momentum_.start(b, c))>
-          start{this->start_.saver(b), this->inverse_blocks(b, c), {b, c, acc_.sink()}, acc_.program(b),
-                momentum_.start(b, c), st.retries == 0 && s.max_retries > 0, warm};
+      const bool first_attempt = st.retries == 0;
+      const detail::AttemptStart<std::remove_const_t<decltype(prepared)>, detail::CopyVelocities<BV, T>,
+                                 InverseBlocks<Model, BV, CV, T>, ApplyImpulses<Model, BV, CV, Sink, T>,
+                                 decltype(acc_.program(b)), decltype(momentum_.start(b, c))>
+          start{prepared,
+                this->start_.saver(b),
+                this->inverse_blocks(b, c),
+                {b, c, acc_.sink()},
+                acc_.program(b),
+                momentum_.start(b, c),
+                persistent && first_attempt,
+                first_attempt && s.max_retries > 0,
+                warm};
       const auto look = momentum_.iterate();
       using Contact = JacobiContact<Model, BV, CV, Sink, T, decltype(look)>;
       const Contact plain{
@@ -162,7 +177,6 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       const detail::JacobiIteration<Contact, decltype(acc_.program(b, look)), decltype(momentum_.program()),
                                     decltype(terms), T>
           iteration{plain, measuring, acc_.program(b, look), momentum_.program(), terms, width, residual_out};
-      const bool persistent = nc <= s.persistent_max_contacts && persistent_.available();
       ConvergenceMonitor<T> monitor(s, st);
       // Iterations `first` ... `last`, the last one measuring the residual.
       auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
