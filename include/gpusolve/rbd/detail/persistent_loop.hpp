@@ -8,11 +8,12 @@
 // which index 0 of the next e.each reads at once and every index after the next
 // e.sync() (the reduction costs one barrier, not two), and e.sum(n, f, out) is
 // its sum; e.scan(in, out, n) writes the inclusive prefix sums of the
-// std::uint32_t in[0, n) to out, read after the next e.sync(). It ends with e.sync(). A start program start(e) queues phases the
-// same way, before the first iteration of a run, and ends with e.sync() if it
-// queued any. The same programs run under two executors: LaunchExec
-// (launch_exec.hpp, a launch per phase, both backends) and GridExec here
-// (phases of one kernel, GPU). A phase is the same functor either way.
+// std::uint32_t in[0, n) to out, read after the next e.sync(). It ends with
+// e.sync(). A start program start(e) queues phases the same way, before the
+// first iteration of a run, and ends with e.sync() if it queued any. The same
+// programs run under two executors: LaunchExec (launch_exec.hpp, a launch per
+// phase, both backends) and GridExec here (phases of one kernel, GPU). A phase
+// is the same functor either way.
 #pragma once
 
 #include <cstddef>
