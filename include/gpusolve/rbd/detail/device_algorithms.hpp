@@ -83,19 +83,23 @@ class DeviceAlgorithms {
   template <class F, class T, class Op>
   void reduce_into(std::size_t n, F f, T init, Op op, T* out, stream_t stream) {
     if constexpr (gpu) {
-#if GPUSOLVE_HAS_NVCC
-      T* values = values_for<T>(n);
-      launch(Device{}, n, EvaluateInto<F, T>{f, values}, stream);
-      reduce_values(values, n, init, op, out, stream);
-#else
-      unsupported();
-#endif
+      evaluate_and_reduce(n, f, init, op, out, stream);
     } else {
       (void)stream;
       T r = init;
       for (std::size_t i = 0; i < n; ++i) r = op(r, f(i));
       *out = r;
     }
+  }
+
+  // reduce_into(), with every f(i) evaluated once, in parallel, on both
+  // backends, before the values are reduced in index order: f(i) may update
+  // index i's own state first.
+  template <class F, class T, class Op>
+  void evaluate_and_reduce(std::size_t n, F f, T init, Op op, T* out, stream_t stream) {
+    T* values = values_for<T>(n);
+    launch(Device{}, n, EvaluateInto<F, T>{f, values}, stream);
+    reduce_values(values, n, init, op, out, stream);
   }
 
   // *out = init op values[0] op ... op values[n - 1], for values already in the

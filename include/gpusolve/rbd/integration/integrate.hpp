@@ -130,15 +130,22 @@ void apply_forces(Bodies<Device, T>& bodies, T dt, const math::Vector3<T>& gravi
   if (b.size() != 0) launch(Device{}, b.size(), ApplyForces<View, T>{b, dt, gravity}, stream);
 }
 
+// Body i's move over dt and its derived fields, as one functor (move()'s
+// kernel, for a caller that fuses it with its own per-body work).
+template <class View, class T>
+MoveBody<View, T> body_move(const View& b, T dt) {
+  return {{b, dt}, {b, 0, true}};
+}
+
 // Moves every active body by its velocities over dt, then updates the derived
 // fields and motion of all bodies. Fixed and removed bodies do not move.
-// World::step calls it after the contact solve.
+// World::step calls it after the contact solve (fused with the step's figures).
 template <class Device, class T>
 void move(Bodies<Device, T>& bodies, T dt, stream_t stream = stream_t{}) {
   using View = typename Bodies<Device, T>::View;
   const View b = bodies.view();
   if (b.size() == 0) return;
-  launch(Device{}, b.size(), MoveBody<View, T>{{b, dt}, {b, 0, true}}, stream);
+  launch(Device{}, b.size(), body_move(b, dt), stream);
 }
 
 // One unconstrained time step (no contacts): apply_forces, then move.

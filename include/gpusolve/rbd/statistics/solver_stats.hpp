@@ -54,7 +54,8 @@ struct StepStats {
   T max_penetration = 0;  // largest max(0, -gap) / (smaller radius of the pair) over contacts
   T kinetic_energy = 0;
   T potential_energy = 0;  // -sum m g.x, zero at the origin
-  double time_detection = 0, time_solve = 0, time_integration = 0;
+  double time_detection = 0, time_solve = 0;
+  double time_integration = 0;  // the move, and the step's figures computed in the same pass
   T energy() const { return kinetic_energy + potential_energy; }
 };
 
