@@ -32,6 +32,21 @@
 
 namespace gpusolve::rbd {
 
+namespace detail {
+// The end of a step for index i: body i's move and contact i's impulse kept
+// for the next step's warm start (World::queue_step runs it with the figures).
+template <class Move, class Remember>
+struct StepEnd {
+  Move move;
+  Remember remember;
+  std::size_t bodies, remembered;  // WarmStart::remembered()
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    if (i < bodies) move(i);
+    if (i < remembered) remember(i);
+  }
+};
+}  // namespace detail
+
 // The bodies come from a host BodySet through a BodyManager (copied once at
 // construction; later changes are announced to manager()). Everything in step()
 // runs where the bodies live; the host is touched only by syncHost() and the
@@ -122,19 +137,23 @@ class World {
       const bool warm = s.warm_start > 0;
       if (warm) warm_.carry(contacts_.view(), s.warm_start, stream_);
       stats.solver = solver_.solve(bodies, contacts_, s, stream_, warm);
-      if (warm)
-        warm_.remember(contacts_.view(), stream_);
-      else
-        warm_.forget();
       if (timing_) slot.marks.mark(2, stream_);
       if (figures_.size() == 0) figures_ = Figures(2);
-      if (own_integration) {  // the move and the figures after it in one pass: its time counts as integration
-        step_figures_after(algorithms_, body_move(bodies.view(), s.dt), bodies.view(), contacts_.view(), g,
-                           figures_.data() + k, stream_);
+      const auto cv = contacts_.view();
+      if (own_integration) {  // the move, the warm start's memory and the figures in one pass: "integration"
+        const auto bv = bodies.view();
+        auto keep = warm_.rememberer(cv, warm);
+        const detail::StepEnd<decltype(body_move(bv, s.dt)), decltype(keep)> end{body_move(bv, s.dt), keep, bv.size(),
+                                                                               warm_.remembered()};
+        step_figures_after(algorithms_, end, bv, cv, g, figures_.data() + k, stream_);
         if (timing_) slot.marks.mark(3, stream_);
       } else {
+        if (warm)
+          warm_.remember(cv, stream_);
+        else
+          warm_.forget();
         if (timing_) slot.marks.mark(3, stream_);
-        step_figures_into(algorithms_, bodies.view(), contacts_.view(), g, figures_.data() + k, stream_);
+        step_figures_into(algorithms_, bodies.view(), cv, g, figures_.data() + k, stream_);
       }
       slot.marks.mark(4, stream_);
     } catch (const NonFiniteStateError& e) {  // found by detection, nothing moved: say which step it stopped

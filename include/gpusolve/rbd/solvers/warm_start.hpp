@@ -115,11 +115,19 @@ class WarmStart {
   }
   template <class CV>
   void remember(const CV& c, stream_t stream = stream_t{}) {
-    count_ = c.size();
-    if (count_ == 0) return;
-    detail::ensure_size(keys_, count_);
-    detail::ensure_size(p_, count_, Model::rows);
-    launch(Device{}, count_, detail::RememberImpulse<Model, CV, T>{c, keys_.data(), p_.view()}, stream);
+    const auto f = rememberer(c);
+    if (count_ != 0) launch(Device{}, count_, f, stream);
+  }
+  // remember() as a functor over the remembered() contacts, for a caller that
+  // runs it in a pass of its own; storage is sized here. Without `on`, forget().
+  template <class CV>
+  detail::RememberImpulse<Model, CV, T> rememberer(const CV& c, bool on = true) {
+    count_ = on ? c.size() : 0;
+    if (count_ != 0) {
+      detail::ensure_size(keys_, count_);
+      detail::ensure_size(p_, count_, Model::rows);
+    }
+    return {c, keys_.data(), p_.view()};
   }
   // No impulses to carry (warm starting off): the next carry() starts all from zero.
   void forget() { count_ = 0; }

@@ -75,15 +75,14 @@ struct StepFiguresOf {
   }
 };
 
-// Body i's own update (`before`, reading and writing only body i), then index
-// i's figures: an update and the figures after it in one pass.
+// Index i's own update (`before`: body i's, contact i's, nothing else's), then
+// index i's figures: an update and the figures after it in one pass.
 template <class Before, class Figures>
 struct AfterEach {
   Before before;
   Figures figures;
-  std::size_t bodies;
   GPUSOLVE_HD auto operator()(std::size_t i) const {
-    if (i < bodies) before(i);
+    before(i);
     return figures(i);
   }
 };
@@ -108,14 +107,15 @@ void step_figures_into(detail::DeviceAlgorithms<Device>& algorithms, const BV& b
                          out, stream);
 }
 
-// The per-body update `before` (e.g. the step's move: body i's own state only),
-// then the figures of the state it leaves, in one pass over the indices.
+// The update `before` of every index i < max(contacts, bodies) (e.g. the
+// step's move: body i's own state only), then the figures of the state it
+// leaves, in one pass over the indices.
 template <class Device, class T, class BV, class CV, class Before>
 void step_figures_after(detail::DeviceAlgorithms<Device>& algorithms, const Before& before, const BV& b, const CV& c,
                         const math::Vector3<T>& gravity, StepFigures<T>* out, stream_t stream = stream_t{}) {
   const std::size_t n = c.size() > b.size() ? c.size() : b.size();
   using Figures = detail::StepFiguresOf<BV, CV, T>;
-  algorithms.evaluate_and_reduce(n, detail::AfterEach<Before, Figures>{before, Figures{b, c, gravity}, b.size()},
+  algorithms.evaluate_and_reduce(n, detail::AfterEach<Before, Figures>{before, Figures{b, c, gravity}},
                                  StepFigures<T>{}, detail::CombineFigures{}, out, stream);
 }
 

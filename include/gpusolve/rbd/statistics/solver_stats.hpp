@@ -55,7 +55,7 @@ struct StepStats {
   T kinetic_energy = 0;
   T potential_energy = 0;  // -sum m g.x, zero at the origin
   double time_detection = 0, time_solve = 0;
-  double time_integration = 0;  // the move, and the step's figures computed in the same pass
+  double time_integration = 0;  // the move, with the warm start's memory and the figures (one pass)
   T energy() const { return kinetic_energy + potential_energy; }
 };
 
