@@ -13,14 +13,17 @@
 //                 the final check cancel out;
 // per check     = (C - B) / (N1 + N - 1): one residual max-reduction, read by
 //                 the host, which waits for the GPU each time;
-// graph         = the same iteration's kernels captured N times into one CUDA
-//                 graph once and replayed (SolverSettings::graphs makes solve()
+// graph         = the same iteration's two kernels (contacts, then bodies)
+//                 captured N times into one CUDA graph once and replayed (SolverSettings::graphs makes solve()
 //                 capture and update one per solve, which costs more than it saves).
 // --persistent: on (the default) makes solve() run the iterations between
 // checks as one cooperative kernel at any size, off launches them
 // (SolverSettings::persistent_max_contacts at its largest or 0).
 // The tolerance is the smallest positive float and divergence detection is
 // off, so every solve runs its full count; the program checks that it did.
+// barrier: the floor under the persistent kernel's iteration, an iteration
+// program of nothing but one grid-wide barrier on the grid the contacts get
+// (per barrier = (time of 10 + N barriers - time of 10) / N, median of repeats).
 // omega defaults to 0.3: on this close-packed pile (12 contacts per sphere) the
 // pyramid model diverges from omega 0.5 up (bench/accuracy.cu shows it), and a
 // timing should run on a converging solve.
@@ -81,8 +84,9 @@ double bytes_per_iteration(const Census& c, std::size_t passes) {
                                (Model::friction ? f : 0) /*mu*/ + 2 * f /*inv_mass*/ + 18 * f /*inv_inertia*/ +
                                2 /*status*/);
   double acc = 0;
-  if constexpr (std::is_same_v<Strategy, Atomic>)
-    acc = sides * 12 * f /*atomic read-modify-write of dv, dw*/ + nb * 18 * f /*dv, dw read+zeroed, v, w r/w*/;
+  if constexpr (std::is_same_v<Strategy, Atomic>)  // one phase: contacts read V + A, bodies write V' and zero an A
+    acc = sides * 12 * f /*atomic read-modify-write of dv, dw*/ + nc * 12 * f /*dv, dw of a and b read with v, w*/ +
+          nb * 24 * f /*v, w, dv, dw read; v, w written, dv, dw zeroed*/;
   else {
     acc = sides * (f /*slot*/ + 6 * f /*dv, dw*/) + nb * (2 * f /*start*/ + 12 * f /*v, w r/w*/);
     if constexpr (std::is_same_v<Strategy, UpdateCache>)  // each pass reads every rank; every non-head entry
@@ -145,7 +149,9 @@ Row bench_strategy(rbd::Bodies<Dev, T>& bodies, rbd::Contacts<Dev, T, Model>& co
   const T residual = last.residual();
   VectorD2<T, device_is<Dev>> v_solve(bodies.v);
 
-  // The same iteration as JacobiSolver::solve, captured n2 times into one graph.
+  // The same iteration as JacobiSolver::solve, captured n2 times into one graph,
+  // as two kernels: the contacts, then the per-body sums (Atomic's solve() runs
+  // the two in one phase, AtomicRotation; the velocities agree to rounding).
   using BV = typename rbd::Bodies<Dev, T>::View;
   using CV = typename rbd::Contacts<Dev, T, Model>::View;
   const std::size_t nc = contacts.size();
@@ -202,6 +208,33 @@ Row bench_strategy(rbd::Bodies<Dev, T>& bodies, rbd::Contacts<Dev, T, Model>& co
   return row;
 }
 
+// An iteration program of one grid barrier and nothing else.
+struct BarrierOnly {
+  template <class E>
+  __device__ void operator()(const E& e, std::size_t, bool) const {
+    e.sync();
+  }
+};
+
+// us per grid barrier of the persistent kernel on the grid `width` indices get.
+Spread barrier_us(std::size_t width, std::size_t iters, const Options& opt, cudaStream_t stream, std::size_t& blocks) {
+  rbd::detail::PersistentLoop<Dev, T> loop;
+  EventTimer timer(stream);
+  const auto timed = [&](std::size_t n) {
+    timer.start();
+    loop.run(rbd::detail::NoStart{}, BarrierOnly{}, n, width, stream);
+    return timer.stop_ms();
+  };
+  for (int w = 0; w < opt.warmup; ++w) timed(10 + iters);
+  std::vector<double> us;
+  for (int r = 0; r < opt.repeats; ++r) {
+    const double a = timed(10), b = timed(10 + iters);
+    us.push_back(1e3 * (b - a) / double(iters));
+  }
+  blocks = loop.blocks();
+  return spread(us);
+}
+
 void print_row(const Row& r, std::size_t nc) {
   const double s = r.iter_us.median * 1e-6;
   std::printf("%-12s %-12s %3zu %9.1f [%8.1f %8.1f] %9.1f [%8.1f %8.1f] %8.1f %9.1f %10.3g %8.1f %8.1f %9.2e %8.1e\n",
@@ -234,6 +267,12 @@ void bench_model(rbd::BodySet<T>& set, const Options& opt, std::size_t target, s
   std::printf("%-12s %-12s %3s %9s %19s %9s %19s %8s %9s %10s %8s %8s %9s %8s\n", "model", "strategy", "L/i",
               "us/iter", "[p10 p90]", "graph", "[p10 p90]", "us/check", "setup us", "contacts/s", "GB/s", "graphGB/s",
               "residual", "|dv|");
+  if (opt.persistent) {
+    std::size_t blocks = 0;
+    const Spread b = barrier_us(nc, iters, opt, stream, blocks);
+    std::printf("%-12s %-12s %3s %9.1f [%8.1f %8.1f]  (one grid barrier of the persistent kernel, %zu blocks of %u)\n",
+                name(Model{}), "barrier", "-", b.median, b.p10, b.p90, blocks, rbd::detail::persistent_block_size);
+  }
   std::vector<Row> rows;
   rows.push_back(bench_strategy<Model, UpdateCache>(bodies, contacts, census, v0, w0, iters, opt, stream));
   print_row(rows.back(), nc);

@@ -1,8 +1,9 @@
 // PersistentLoop: runs many iterations of a solver in one cooperative kernel,
 // a grid-wide barrier between their phases instead of a kernel launch each.
 //
-// An iteration program is a __host__ __device__ callable program(e, last) that
-// queues its phases through an executor e: e.each(n, f) runs f(i) for i in
+// An iteration program is a __host__ __device__ callable program(e, k, last)
+// that queues the phases of a run's k-th iteration (k = 1, 2, ...; `last` for
+// the run's last) through an executor e: e.each(n, f) runs f(i) for i in
 // [0, n); e.sync() orders everything before it before everything after it;
 // e.reduce(n, f, init, op, out) writes init op f(0) op ... op f(n - 1) to *out,
 // which index 0 of the next e.each reads at once and every index after the next
@@ -107,7 +108,7 @@ __global__ void __launch_bounds__(persistent_block_size)
                                  std::uint32_t* scan_totals) {
   const GridExec<T> e{partials, scan_totals};
   start(e);
-  for (std::size_t k = 1; k <= count; ++k) program(e, k == count);
+  for (std::size_t k = 1; k <= count; ++k) program(e, k, k == count);
 }
 #endif
 
@@ -155,6 +156,7 @@ class PersistentLoop {
       const std::size_t wanted = (width + persistent_block_size - 1) / persistent_block_size;
       const std::size_t resident = static_cast<std::size_t>(per_sm) * static_cast<std::size_t>(gpusolve::detail::sm_count());
       const std::size_t blocks = wanted == 0 ? 1 : (wanted < resident ? wanted : resident);
+      blocks_ = blocks;
       if (partials_.size_x() < blocks) partials_.resize(blocks);
       if (scan_totals_.size_x() < blocks) scan_totals_.resize(blocks);
       T* partials = partials_.data();
@@ -169,7 +171,11 @@ class PersistentLoop {
     throw UnsupportedError("gpusolve: the persistent solver kernel needs device::gpu and nvcc");
   }
 
+  // The grid of the last run, in blocks of persistent_block_size threads.
+  std::size_t blocks() const { return blocks_; }
+
  private:
+  std::size_t blocks_ = 0;
   VectorD1<T, device_is<Device>> partials_;
   VectorD1<std::uint32_t, device_is<Device>> scan_totals_;
 };

@@ -43,7 +43,8 @@ struct Gather {};
 // prepare_program(b, c, stream) is prepare() as a start program, for a solver
 // that runs it in its own first kernel: Gather's grouping is built there; the
 // other strategies prepare at once (UpdateCache's host needs its pass count)
-// and return an empty program.
+// and return an empty program. Atomic has besides rotation(b): its iterations
+// in one phase each, for a solver without momentum (AtomicRotation).
 template <class Strategy, class Device, class T>
 class Accumulator;
 
@@ -173,6 +174,93 @@ struct AtomicApply {
   }
 };
 
+// Atomic's iterations in one phase each (AtomicRotation): the contacts of
+// iteration k see body j's velocities as V_{k-1}(j) + A_{k-1}(j), the last
+// velocities stored plus the last iteration's sums, not yet added.
+template <class T>
+struct RotatedIterate : CurrentIterate<T> {
+  VectorD2View<T> v, w, av, aw;  // V_{k-1}, A_{k-1}
+  template <class BV>
+  GPUSOLVE_HD void velocity(const BV&, std::uint32_t j, math::Vector3<T>& vj, math::Vector3<T>& wj) const {
+    T x[12];  // all loads before the first add: one memory round trip
+    for (std::size_t c = 0; c < 3; ++c) x[c] = v(j, c), x[3 + c] = w(j, c), x[6 + c] = av(j, c), x[9 + c] = aw(j, c);
+    vj = math::Vector3<T>(x[0] + x[6], x[1] + x[7], x[2] + x[8]);
+    wj = math::Vector3<T>(x[3] + x[9], x[4] + x[10], x[5] + x[11]);
+  }
+};
+
+// Body j's share of a rotated phase: out = V + A, then the sum `zero` set to
+// zero, and with `two` the sum `also` too. load() and store() split it so that
+// a phase can put other work between them; every load comes before the first
+// store.
+template <class T>
+struct RotateBody {
+  VectorD2View<T> v, w, av, aw;  // read
+  VectorD2View<T> v_out, w_out;  // written
+  VectorD2View<T> zero_v, zero_w, also_v, also_w;
+  bool two;
+  GPUSOLVE_HD void load(std::size_t j, T (&x)[12]) const {
+    for (std::size_t c = 0; c < 3; ++c) x[c] = v(j, c), x[3 + c] = w(j, c), x[6 + c] = av(j, c), x[9 + c] = aw(j, c);
+  }
+  GPUSOLVE_HD void store(std::size_t j, const T (&x)[12]) const {
+    for (std::size_t c = 0; c < 3; ++c) v_out(j, c) = x[c] + x[6 + c], w_out(j, c) = x[3 + c] + x[9 + c];
+    for (std::size_t c = 0; c < 3; ++c) zero_v(j, c) = 0, zero_w(j, c) = 0;
+    if (two)
+      for (std::size_t c = 0; c < 3; ++c) also_v(j, c) = 0, also_w(j, c) = 0;
+  }
+  GPUSOLVE_HD void operator()(std::size_t j) const {
+    T x[12];
+    load(j, x);
+    store(j, x);
+  }
+};
+
+// The three sums of Atomic's rotation in one store of bodies x 18: sum s's dv
+// in rows 6 s to 6 s + 2, its dw in the next three. A sum is found by
+// arithmetic, not by indexing an array of views (which would put the views in
+// local memory).
+template <class T>
+struct AtomicSums {
+  VectorD2View<T> all;
+  GPUSOLVE_HD VectorD2View<T> dv(std::size_t s) const { return {all.ptr + 6 * s * all.pitch, all.nx, 3, all.pitch}; }
+  GPUSOLVE_HD VectorD2View<T> dw(std::size_t s) const {
+    return {all.ptr + (6 * s + 3) * all.pitch, all.nx, 3, all.pitch};
+  }
+};
+
+// Atomic's iterations in one phase and one barrier each, for a solver without
+// momentum. Velocities rotate through two buffers (V_0: the bodies' own, V_1:
+// a copy), the contacts' sums through three (A_0 is the accumulator's sink).
+// In the phase of iteration k (1, 2, ... within a run), contacts read V_{k-1} +
+// A_{k-1} (iterate(k)) and add their changes into A_k (sink(k)), and body j
+// writes V_k = V_{k-1} + A_{k-1} and zeroes A_{k+1} (body(k)): no phase reads
+// what it writes. A run starts with A_0 = A_1 = 0 and V_0 the velocities and
+// ends, after its last iteration K and a barrier, with fold(K): the bodies'
+// velocities V_K + A_K, and A_K and A_{K-1} zeroed, so every sum is zero again.
+template <class T>
+struct AtomicRotation {
+  VectorD2View<T> v0, w0, v1, w1;
+  AtomicSums<T> sums;
+  GPUSOLVE_HD RotatedIterate<T> iterate(std::size_t k) const {
+    const bool p = k % 2 == 0;  // V_{k-1} is V_1
+    const std::size_t q = (k + 2) % 3;  // A_{k-1}
+    return {{}, p ? v1 : v0, p ? w1 : w0, sums.dv(q), sums.dw(q)};
+  }
+  GPUSOLVE_HD AtomicSink<T> sink(std::size_t k) const { return {sums.dv(k % 3), sums.dw(k % 3)}; }
+  GPUSOLVE_HD RotateBody<T> body(std::size_t k) const {
+    const bool p = k % 2 == 0;
+    const std::size_t q = (k + 2) % 3, z = (k + 1) % 3;
+    return {p ? v1 : v0, p ? w1 : w0, sums.dv(q), sums.dw(q), p ? v0 : v1, p ? w0 : w1,
+            sums.dv(z),  sums.dw(z),  sums.dv(z), sums.dw(z), false};
+  }
+  GPUSOLVE_HD RotateBody<T> fold(std::size_t k) const {
+    const bool p = k % 2 == 1;  // V_k is V_1
+    const std::size_t q = k % 3, z = (k + 2) % 3;
+    return {p ? v1 : v0, p ? w1 : w0, sums.dv(q), sums.dw(q), v0, w0, sums.dv(q), sums.dw(q), sums.dv(z), sums.dw(z),
+            true};
+  }
+};
+
 // The update cache shared by UpdateCache and Gather: one slot per contact side.
 template <class Device, class T>
 class CacheStore {
@@ -248,27 +336,35 @@ class Accumulator<Atomic, Device, T> {
  public:
   template <class BV, class CV>
   void prepare(const BV& b, const CV&, stream_t stream = stream_t{}) {
-    if (!detail::ensure_size(dv_, b.size(), 3)) dv_.fill(T(0), stream);  // a new store is zero already
-    if (!detail::ensure_size(dw_, b.size(), 3)) dw_.fill(T(0), stream);
+    if (!detail::ensure_size(sums_, b.size(), 18)) sums_.fill(T(0), stream);  // a new store is zero already
   }
   template <class BV, class CV>
   detail::NoStart prepare_program(const BV& b, const CV& c, stream_t stream) {
     prepare(b, c, stream);
     return {};
   }
-  detail::AtomicSink<T> sink() { return detail::AtomicSink<T>{dv_.view(), dw_.view()}; }
+  detail::AtomicSink<T> sink() { return {sums().dv(0), sums().dw(0)}; }
   template <class BV, class Iterate = detail::CurrentIterate<T>>
   detail::AtomicApply<BV, T, Iterate> program(const BV& b, const Iterate& it = Iterate{}) {
-    return {{b, dv_.view(), dw_.view(), it}};
+    return {{b, sums().dv(0), sums().dw(0), it}};
   }
   template <class BV>
   void apply(const BV& b, stream_t stream = stream_t{}) {
     program(b)(detail::LaunchExec<Device, T>{stream});
   }
+  // After prepare(): the rotation over b's velocities.
+  template <class BV>
+  detail::AtomicRotation<T> rotation(const BV& b) {
+    detail::ensure_size(copy_, b.size(), 6);
+    const auto c = copy_.view();
+    return {b.v, b.w, {c.ptr, b.size(), 3, c.pitch}, {c.ptr + 3 * c.pitch, b.size(), 3, c.pitch}, sums()};
+  }
   std::size_t passes() const { return 0; }
 
  private:
-  detail::Vec3Store<Device, T> dv_, dw_;
+  detail::AtomicSums<T> sums() { return {sums_.view()}; }
+  VectorD2<T, device_is<Device>> sums_;  // AtomicSums: A_0 (the sink), A_1, A_2
+  VectorD2<T, device_is<Device>> copy_;  // V_1 of the rotation: v then w
 };
 
 }  // namespace gpusolve::rbd

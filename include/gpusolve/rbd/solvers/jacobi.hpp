@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <type_traits>
+#include <utility>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
@@ -35,7 +36,8 @@ namespace detail {
 // last, the momentum's step (Step, which ends in the barrier the next phase
 // needs), then their sum per body (Apply, the accumulation strategy). Contact
 // and body phases go through the momentum's iterate (iterate.hpp), so a
-// momentum method costs no phase of its own: two barriers per iteration. The
+// momentum method costs no phase of its own: two barriers per iteration
+// (Atomic without momentum needs one: RotatedJacobiIteration). The
 // last iteration of a run ends in the residual check's reduction (Residual,
 // convergence.hpp) into *residual_out, inside a persistent kernel as well.
 template <class Contact, class Apply, class Step, class Residual, class T>
@@ -48,7 +50,7 @@ struct JacobiIteration {
   T* residual_out;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
-  GPUSOLVE_HD void operator()(const E& e, bool last) const {
+  GPUSOLVE_HD void operator()(const E& e, std::size_t, bool last) const {
     if (last) {
       e.each(plain.phi.c.size(), measuring);
       e.sync();
@@ -62,6 +64,61 @@ struct JacobiIteration {
       e.reduce(width, residual, T(0), MaxOp{}, residual_out);
       e.sync();
     }
+  }
+};
+
+// Contact i and body i of a rotated phase (AtomicRotation): the body's loads
+// are issued first, so that they overlap the contact's, and its stores last.
+// An index past the bodies loads the last body (there is one wherever there
+// is a contact) and stores nothing: no branch around the loads.
+template <class Contact, class T>
+struct ContactAndBody {
+  Contact contact;
+  RotateBody<T> body;
+  std::size_t contacts, bodies;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    T x[12];
+    body.load(i < bodies ? i : bodies - 1, x);
+    if (i < contacts) contact(i);
+    if (i < bodies) body.store(i, x);
+  }
+};
+
+// JacobiIteration in one phase, for Atomic without momentum (AtomicRotation,
+// accumulation.hpp): iteration k's contacts and its body updates share one
+// phase and one barrier. The last iteration of a run adds the fold of the
+// rotation into the bodies' velocities before the residual's reduction.
+template <class Contact, class Residual, class T>
+struct RotatedJacobiIteration {
+  Contact plain, measuring;  // their sink and iterate are iteration k's
+  AtomicRotation<T> rotation;
+  std::size_t bodies;
+  Residual residual;
+  std::size_t width;
+  T* residual_out;
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e, std::size_t k, bool last) const {
+    if (last)
+      phase(e, k, measuring);
+    else
+      phase(e, k, plain);
+    if (last) {
+      e.each(bodies, rotation.fold(k));
+      e.sync();
+      e.reduce(width, residual, T(0), MaxOp{}, residual_out);
+      e.sync();
+    }
+  }
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void phase(const E& e, std::size_t k, Contact contact) const {
+    contact.resolve.sink = rotation.sink(k);
+    contact.iterate = rotation.iterate(k);
+    const std::size_t contacts = contact.phi.c.size();
+    e.each(contacts > bodies ? contacts : bodies,
+           ContactAndBody<Contact, T>{contact, rotation.body(k), contacts, bodies});
+    e.sync();
   }
 };
 
@@ -150,6 +207,8 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     }
 
     using Sink = decltype(acc_.sink());
+    // Atomic without momentum runs an iteration as one phase (RotatedJacobiIteration).
+    constexpr bool rotated = std::is_same_v<Strategy, Atomic> && std::is_same_v<MomentumTag, NoMomentum>;
     const VectorD2View<T> rhs{};  // JacobiContact keeps each error in registers: no store
     const auto residual = this->residual_.view();
     auto attempt = [&](T omega, SolverStats<T>& st) {
@@ -168,20 +227,33 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
                 persistent && first_attempt,
                 first_attempt && s.max_retries > 0,
                 warm};
-      const auto look = momentum_.iterate();
-      using Contact = JacobiContact<Model, BV, CV, Sink, T, decltype(look)>;
-      const Contact plain{
-          {b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, acc_.sink(), omega, false, residual}, look};
-      Contact measuring = plain;
-      measuring.resolve.measure = true;
-      const detail::JacobiIteration<Contact, decltype(acc_.program(b, look)), decltype(momentum_.program()),
-                                    decltype(terms), T>
-          iteration{plain, measuring, acc_.program(b, look), momentum_.program(), terms, width, residual_out};
+      // The iteration's contact functors, plain and measuring, for a sink and an iterate.
+      auto contact_pair = [&](const auto& sink, const auto& look) {
+        using Contact = JacobiContact<Model, BV, CV, std::decay_t<decltype(sink)>, T, std::decay_t<decltype(look)>>;
+        const Contact plain{{b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, sink, omega, false, residual}, look};
+        Contact measuring = plain;
+        measuring.resolve.measure = true;
+        return std::pair<Contact, Contact>{plain, measuring};
+      };
+      const auto iteration = [&] {
+        if constexpr (rotated) {
+          const auto r = acc_.rotation(b);
+          const auto [plain, measuring] = contact_pair(r.sink(1), r.iterate(1));
+          return detail::RotatedJacobiIteration<std::decay_t<decltype(plain)>, decltype(terms), T>{
+              plain, measuring, r, b.size(), terms, width, residual_out};
+        } else {
+          const auto look = momentum_.iterate();
+          const auto [plain, measuring] = contact_pair(acc_.sink(), look);
+          return detail::JacobiIteration<std::decay_t<decltype(plain)>, decltype(acc_.program(b, look)),
+                                         decltype(momentum_.program()), decltype(terms), T>{
+              plain, measuring, acc_.program(b, look), momentum_.program(), terms, width, residual_out};
+        }
+      }();
       ConvergenceMonitor<T> monitor(s, st);
       // Iterations `first` ... `last`, the last one measuring the residual.
       auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
         const detail::LaunchExec<Device, T> e{q, &algorithms_};
-        for (std::size_t it = first; it <= last; ++it) iteration(e, it == last);
+        for (std::size_t it = first; it <= last; ++it) iteration(e, it - first + 1, it == last);
       };
       // A run: the start program `begin`, then the iterations (a graph's
       // kernels stay the same from run to run without the start's).
