@@ -8,6 +8,7 @@
 // falls for `settle` steps on the GPU at the library's defaults; every timing
 // then starts from that same settled state, copied into a fresh World:
 //   jacobi10:  projected Jacobi (gather), exactly 10 iterations per step, one check;
+//   atomic10:  the same with atomic accumulation (one phase per iteration);
 //   defaults:  World<device::gpu> with SolverSettings{} (APGD, 50 iterations);
 //   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500.
 // --loop: how the GPU runs the solver's iterations between two residual checks:
@@ -79,13 +80,13 @@ SolverSettings<T> settings_for(const std::string& mode, const std::string& loop)
   s.graphs = loop == "graphs";
   s.detection_graph = loop != "auto-nograph" && loop != "launches";
   s.friction = T(0.5);  // PILE.md
-  if (mode == "jacobi10") {
+  if (mode == "jacobi10" || mode == "atomic10") {
     s.max_iterations = 10, s.check_every = 10;
     s.tolerance = T(1e-30);  // runs all 10
   } else if (mode == "tolerance") {
     s.max_iterations = 500, s.check_every = 10;
   } else if (mode != "defaults") {
-    throw InvalidArgumentError("bench: unknown mode '" + mode + "' (jacobi10, defaults, tolerance)");
+    throw InvalidArgumentError("bench: unknown mode '" + mode + "' (jacobi10, atomic10, defaults, tolerance)");
   }
   return s;
 }
@@ -166,6 +167,7 @@ Row time_backend(bool gpu, const rbd::BodySet<T>& set, const SolverSettings<T>& 
 Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const rbd::BodySet<T>& set, long steps) {
   const SolverSettings<T> s = settings_for(mode, loop);
   if (mode == "jacobi10") return time_backend<rbd::Jacobi<rbd::Gather>>(gpu, set, s, steps);
+  if (mode == "atomic10") return time_backend<rbd::Jacobi<rbd::Atomic>>(gpu, set, s, steps);
   return time_backend<rbd::AcceleratedJacobi<rbd::Gather>>(gpu, set, s, steps);
 }
 
