@@ -105,6 +105,21 @@ GPUSOLVE_HD void sort_few(std::uint32_t first, std::uint32_t last, Get get, Set 
   }
 }
 
+// Inserts j into the sorted found[0, c) (c < kept_contacts). found is indexed
+// only in unrolled loops, so that it stays in registers: a position p takes
+// its own body while that is below j, j where the bodies below end, and its
+// left neighbour's after.
+GPUSOLVE_HD inline void insert_sorted(std::uint32_t (&found)[kept_contacts], std::uint32_t c, std::uint32_t j) {
+  GPUSOLVE_UNROLL
+  for (int p = int(kept_contacts) - 1; p >= 0; --p) {
+    const std::uint32_t up = std::uint32_t(p);
+    if (up > c) continue;
+    const bool stays = up < c && found[p] < j;
+    const bool here = p == 0 || found[p > 0 ? p - 1 : 0] < j;
+    found[p] = stays ? found[p] : here ? j : found[p > 0 ? p - 1 : 0];
+  }
+}
+
 // Counts sphere i's contacts and keeps the first kept_contacts of them, sorted,
 // at kept[c * n + i] (c = 0, 1, ...: a warp's stores are contiguous).
 template <class Walk>
@@ -114,15 +129,15 @@ struct CountContacts {
   std::uint32_t* kept;
   std::size_t n;
   GPUSOLVE_HD void operator()(std::size_t i) const {
-    std::uint32_t found[kept_contacts];
+    std::uint32_t found[kept_contacts] = {};
     std::uint32_t c = 0;
     walk(i, [&](std::uint32_t j) {
-      if (c < kept_contacts) found[c] = j;
+      if (c < kept_contacts) insert_sorted(found, c, j);
       ++c;
     });
-    const std::uint32_t k = c < kept_contacts ? c : kept_contacts;
-    sort_few(0, k, [&](std::uint32_t p) { return found[p]; }, [&](std::uint32_t p, std::uint32_t j) { found[p] = j; });
-    for (std::uint32_t p = 0; p < k; ++p) kept[p * n + i] = found[p];
+    GPUSOLVE_UNROLL
+    for (std::uint32_t p = 0; p < kept_contacts; ++p)
+      if (p < c) kept[p * n + i] = found[p];
     count[i] = c;
   }
 };
