@@ -7,12 +7,14 @@
 
 #include <cuda/atomic>
 
+#include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/contacts/contact_grouping.hpp"
 #include "gpusolve/rbd/detail/launch_exec.hpp"
+#include "gpusolve/rbd/detail/packed_velocity.hpp"
 #include "gpusolve/rbd/detail/persistent_loop.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
@@ -134,33 +136,31 @@ struct CacheApply {
   }
 };
 
+// Atomic's sums are packed (packed_velocity.hpp): a contact side's atomics
+// and a body's loads are two vector accesses each.
 template <class T>
 struct AtomicSink {
-  VectorD2View<T> dv, dw;  // bodies x 3
+  PackedSums<T> sums;
+  std::size_t s;  // the sum added into
   GPUSOLVE_HD void add(std::size_t, const BodyResponse<T>& d) const {
-    if (d.move_a) apply(d.ia, d.dva, d.dwa);
-    if (d.move_b) apply(d.ib, d.dvb, d.dwb);
-  }
-  GPUSOLVE_HD void apply(std::uint32_t body, const math::Vector3<T>& v, const math::Vector3<T>& w) const {
-    for (std::size_t k = 0; k < 3; ++k) {
-      cuda::atomic_ref<T, cuda::thread_scope_device>(dv(body, k)).fetch_add(v[k], cuda::std::memory_order_relaxed);
-      cuda::atomic_ref<T, cuda::thread_scope_device>(dw(body, k)).fetch_add(w[k], cuda::std::memory_order_relaxed);
-    }
+    if (d.move_a) sums.at(s, d.ia).atomic_add(d.dva, d.dwa);
+    if (d.move_b) sums.at(s, d.ib).atomic_add(d.dvb, d.dwb);
   }
 };
 
 template <class BV, class T, class Iterate>
 struct AtomicToBodies {
   BV b;
-  VectorD2View<T> dv, dw;
+  PackedSums<T> sums;  // sum 0
   Iterate iterate;
-  // Zeroes the accumulator after the velocities' loads and stores: a store
-  // before them would hold the loads back (the views might alias).
+  // Zeroes the sum after the velocities' loads and stores: a store before
+  // them would hold the loads back (the views might alias).
   GPUSOLVE_HD void operator()(std::size_t k) const {
-    T sv[3], sw[3];
-    for (std::size_t c = 0; c < 3; ++c) sv[c] = dv(k, c), sw[c] = dw(k, c);
+    T x[6];
+    sums.at(0, k).load(x);
+    const T sv[3] = {x[0], x[1], x[2]}, sw[3] = {x[3], x[4], x[5]};
     iterate.add(b, k, sv, sw);
-    for (std::size_t c = 0; c < 3; ++c) dv(k, c) = 0, dw(k, c) = 0;
+    sums.at(0, k).zero();
   }
 };
 
@@ -174,57 +174,57 @@ struct AtomicApply {
   }
 };
 
+// Body j's velocities V and sum A of a rotated phase, as twelve values: V's
+// six from the velocity views, then A's six from the packed sums; every load
+// is issued before the first use.
+template <class T>
+GPUSOLVE_HD void load_rotated(const VectorD2View<T>& v, const VectorD2View<T>& w, const PackedPair<T>& a,
+                              std::size_t j, T (&x)[12]) {
+  T s[6];
+  for (std::size_t c = 0; c < 3; ++c) x[c] = v(j, c), x[3 + c] = w(j, c);
+  a.load(s);
+  for (std::size_t c = 0; c < 6; ++c) x[6 + c] = s[c];
+}
+
 // Atomic's iterations in one phase each (AtomicRotation): the contacts of
 // iteration k see body j's velocities as V_{k-1}(j) + A_{k-1}(j), the last
 // velocities stored plus the last iteration's sums, not yet added.
 template <class T>
 struct RotatedIterate : CurrentIterate<T> {
-  VectorD2View<T> v, w, av, aw;  // V_{k-1}, A_{k-1}
+  VectorD2View<T> v, w;  // V_{k-1}
+  PackedSums<T> sums;
+  std::size_t q;  // A_{k-1}
   template <class BV>
   GPUSOLVE_HD void velocity(const BV&, std::uint32_t j, math::Vector3<T>& vj, math::Vector3<T>& wj) const {
-    T x[12];  // all loads before the first add: one memory round trip
-    for (std::size_t c = 0; c < 3; ++c) x[c] = v(j, c), x[3 + c] = w(j, c), x[6 + c] = av(j, c), x[9 + c] = aw(j, c);
+    T x[12];
+    load_rotated(v, w, sums.at(q, j), j, x);
     vj = math::Vector3<T>(x[0] + x[6], x[1] + x[7], x[2] + x[8]);
     wj = math::Vector3<T>(x[3] + x[9], x[4] + x[10], x[5] + x[11]);
   }
 };
 
-// Body j's share of a rotated phase: out = V + A, then the sum `zero` set to
-// zero, and with `two` the sum `also` too. load() and store() split it so that
-// a phase can put other work between them; every load comes before the first
-// store.
+// Body j's share of a rotated phase: out = V + A (V from v, w; A sum q), then
+// sum `zero` set to zero, and with `two` sum `also` too. load() and store()
+// split it so that a phase can put other work between them; every load comes
+// before the first store.
 template <class T>
 struct RotateBody {
-  VectorD2View<T> v, w, av, aw;  // read
+  VectorD2View<T> v, w;  // read
+  PackedSums<T> sums;
+  std::size_t q;
   VectorD2View<T> v_out, w_out;  // written
-  VectorD2View<T> zero_v, zero_w, also_v, also_w;
+  std::size_t zero, also;
   bool two;
-  GPUSOLVE_HD void load(std::size_t j, T (&x)[12]) const {
-    for (std::size_t c = 0; c < 3; ++c) x[c] = v(j, c), x[3 + c] = w(j, c), x[6 + c] = av(j, c), x[9 + c] = aw(j, c);
-  }
+  GPUSOLVE_HD void load(std::size_t j, T (&x)[12]) const { load_rotated(v, w, sums.at(q, j), j, x); }
   GPUSOLVE_HD void store(std::size_t j, const T (&x)[12]) const {
     for (std::size_t c = 0; c < 3; ++c) v_out(j, c) = x[c] + x[6 + c], w_out(j, c) = x[3 + c] + x[9 + c];
-    for (std::size_t c = 0; c < 3; ++c) zero_v(j, c) = 0, zero_w(j, c) = 0;
-    if (two)
-      for (std::size_t c = 0; c < 3; ++c) also_v(j, c) = 0, also_w(j, c) = 0;
+    sums.at(zero, j).zero();
+    if (two) sums.at(also, j).zero();
   }
   GPUSOLVE_HD void operator()(std::size_t j) const {
     T x[12];
     load(j, x);
     store(j, x);
-  }
-};
-
-// The three sums of Atomic's rotation in one store of bodies x 18: sum s's dv
-// in rows 6 s to 6 s + 2, its dw in the next three. A sum is found by
-// arithmetic, not by indexing an array of views (which would put the views in
-// local memory).
-template <class T>
-struct AtomicSums {
-  VectorD2View<T> all;
-  GPUSOLVE_HD VectorD2View<T> dv(std::size_t s) const { return {all.ptr + 6 * s * all.pitch, all.nx, 3, all.pitch}; }
-  GPUSOLVE_HD VectorD2View<T> dw(std::size_t s) const {
-    return {all.ptr + (6 * s + 3) * all.pitch, all.nx, 3, all.pitch};
   }
 };
 
@@ -240,24 +240,20 @@ struct AtomicSums {
 template <class T>
 struct AtomicRotation {
   VectorD2View<T> v0, w0, v1, w1;
-  AtomicSums<T> sums;
+  PackedSums<T> sums;
   GPUSOLVE_HD RotatedIterate<T> iterate(std::size_t k) const {
     const bool p = k % 2 == 0;  // V_{k-1} is V_1
-    const std::size_t q = (k + 2) % 3;  // A_{k-1}
-    return {{}, p ? v1 : v0, p ? w1 : w0, sums.dv(q), sums.dw(q)};
+    return {{}, p ? v1 : v0, p ? w1 : w0, sums, (k + 2) % 3};
   }
-  GPUSOLVE_HD AtomicSink<T> sink(std::size_t k) const { return {sums.dv(k % 3), sums.dw(k % 3)}; }
+  GPUSOLVE_HD AtomicSink<T> sink(std::size_t k) const { return {sums, k % 3}; }
   GPUSOLVE_HD RotateBody<T> body(std::size_t k) const {
     const bool p = k % 2 == 0;
-    const std::size_t q = (k + 2) % 3, z = (k + 1) % 3;
-    return {p ? v1 : v0, p ? w1 : w0, sums.dv(q), sums.dw(q), p ? v0 : v1, p ? w0 : w1,
-            sums.dv(z),  sums.dw(z),  sums.dv(z), sums.dw(z), false};
+    const std::size_t z = (k + 1) % 3;
+    return {p ? v1 : v0, p ? w1 : w0, sums, (k + 2) % 3, p ? v0 : v1, p ? w0 : w1, z, z, false};
   }
   GPUSOLVE_HD RotateBody<T> fold(std::size_t k) const {
     const bool p = k % 2 == 1;  // V_k is V_1
-    const std::size_t q = k % 3, z = (k + 2) % 3;
-    return {p ? v1 : v0, p ? w1 : w0, sums.dv(q), sums.dw(q), v0, w0, sums.dv(q), sums.dw(q), sums.dv(z), sums.dw(z),
-            true};
+    return {p ? v1 : v0, p ? w1 : w0, sums, k % 3, v0, w0, k % 3, (k + 2) % 3, true};
   }
 };
 
@@ -336,17 +332,18 @@ class Accumulator<Atomic, Device, T> {
  public:
   template <class BV, class CV>
   void prepare(const BV& b, const CV&, stream_t stream = stream_t{}) {
-    if (!detail::ensure_size(sums_, b.size(), 18)) sums_.fill(T(0), stream);  // a new store is zero already
+    bodies_ = b.size();
+    if (!detail::ensure_size(sums_, 3 * detail::packed_width * bodies_)) sums_.fill(T(0), stream);  // a new store is zero
   }
   template <class BV, class CV>
   detail::NoStart prepare_program(const BV& b, const CV& c, stream_t stream) {
     prepare(b, c, stream);
     return {};
   }
-  detail::AtomicSink<T> sink() { return {sums().dv(0), sums().dw(0)}; }
+  detail::AtomicSink<T> sink() { return {sums(), 0}; }
   template <class BV, class Iterate = detail::CurrentIterate<T>>
   detail::AtomicApply<BV, T, Iterate> program(const BV& b, const Iterate& it = Iterate{}) {
-    return {{b, sums().dv(0), sums().dw(0), it}};
+    return {{b, sums(), it}};
   }
   template <class BV>
   void apply(const BV& b, stream_t stream = stream_t{}) {
@@ -362,9 +359,10 @@ class Accumulator<Atomic, Device, T> {
   std::size_t passes() const { return 0; }
 
  private:
-  detail::AtomicSums<T> sums() { return {sums_.view()}; }
-  VectorD2<T, device_is<Device>> sums_;  // AtomicSums: A_0 (the sink), A_1, A_2
+  detail::PackedSums<T> sums() { return {sums_.data(), bodies_}; }
+  VectorD1<T, device_is<Device>> sums_;  // A_0 (the sink), A_1, A_2, packed
   VectorD2<T, device_is<Device>> copy_;  // V_1 of the rotation: v then w
+  std::size_t bodies_ = 0;
 };
 
 }  // namespace gpusolve::rbd
