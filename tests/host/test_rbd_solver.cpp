@@ -126,61 +126,6 @@ TEST_CASE("update-cache, atomic and gather accumulation give the same velocities
   CHECK(max_abs_diff(impulses(ca), impulses(cg)) < 1e-12);
 }
 
-// The iterations apply each contact's precomputed response (InverseBlocks:
-// Contacts::im, ga, gb) instead of the bodies' masses and inertias: it must be
-// m^-1 p and I^-1 (r x p) of each body, with I^-1 the world-frame inverse
-// inertia of a rotated, non-isotropic body, and nothing for a fixed one.
-TEST_CASE("a contact's precomputed response is m^-1 p and I^-1 (r x p) of its bodies", "[rbd_solver]") {
-  auto set = pile<double>(2, 2);
-  for (std::size_t k = 1; k < set.size(); ++k) {  // rotated, anisotropic spheres: a full world-frame I^-1
-    Body<double>& body = set[k];
-    body.inertia = {0.1, 0, 0, 0, 0.2 + 0.01 * k, 0, 0, 0, 0.35};
-    body.inv_inertia_body = {1 / 0.1, 0, 0, 0, 1 / (0.2 + 0.01 * k), 0, 0, 0, 1 / 0.35};
-    const double a = 0.3 + 0.2 * k, h = std::sin(a / 2) / std::sqrt(3.0);
-    body.q = {std::cos(a / 2), h, -h, h};
-  }
-  Store store(set);
-  store.syncDeviceFull();
-  auto& b = store.device();
-  Contacts<device::cpu, double, PyramidFriction> c;
-  SolverSettings<double> s = tight();
-  s.friction = 0.5;
-  prepare_solve(b, c, s);
-  REQUIRE(c.size() > 10);
-  using BV = Bodies<device::cpu, double>::View;
-  using CV = Contacts<device::cpu, double, PyramidFriction>::View;
-  const BV bv = b.view();
-  const CV cv = c.view();
-  for (std::size_t i = 0; i < c.size(); ++i) InverseBlocks<PyramidFriction, BV, CV, double>{bv, cv}(i);
-  std::size_t fixed_sides = 0;
-  double worst = 0;
-  for (std::size_t i = 0; i < c.size(); ++i) {
-    const double dx[3] = {0.7 + 0.01 * i, -0.3, 0.45};
-    const rbd::detail::Frame<double, PyramidFriction, CV> f(cv, i);
-    const rbd::detail::BodyResponse<double> d(cv, i, f, dx);
-    const math::Vector3<double> p = f.world(dx);
-    const std::uint32_t ids[2] = {cv.a[i], cv.b[i]};
-    const bool moves[2] = {d.move_a, d.move_b};
-    const math::Vector3<double> r[2] = {d.ra, d.rb}, dv[2] = {d.dva, d.dvb}, dw[2] = {d.dwa, d.dwb};
-    for (int side = 0; side < 2; ++side) {
-      const std::uint32_t k = ids[side];
-      const double sign = side == 0 ? 1 : -1;
-      CHECK(moves[side] == bv.moving(k));
-      math::Vector3<double> want_v(0, 0, 0), want_w(0, 0, 0);
-      if (bv.moving(k)) {
-        want_v = sign * bv.inv_mass[k] * p;
-        want_w = sign * (rbd::detail::load9<double>(bv.inv_inertia, k) * (r[side] % p));
-      } else {
-        ++fixed_sides;
-      }
-      for (std::size_t q = 0; q < 3; ++q)
-        worst = std::fmax(worst, std::fmax(std::fabs(dv[side][q] - want_v[q]), std::fabs(dw[side][q] - want_w[q])));
-    }
-  }
-  CHECK(fixed_sides >= 4);  // the lower layer stands on the plane
-  CHECK(worst < 1e-12);
-}
-
 TEST_CASE("every contact impulse lies inside its friction pyramid", "[rbd_solver]") {
   auto set = pile<double>(3, 2, 0.5, 0.01);
   for (std::size_t i = 1; i < set.size(); ++i) set[i].v = {0.3 * double(i % 3) - 0.3, 0.2, -1.0};

@@ -23,8 +23,7 @@ namespace gpusolve::rbd {
 // go from each body's centre of mass to the contact point; phi0 is the gap along
 // n at the start of the step (negative when the bodies overlap). The narrow phase
 // fills a, b, n, ra, rb, phi0 and, for models with friction, mu (View::set also
-// builds the tangents). The solver fills dinv, im, ga and gb once per solve
-// (InverseBlocks) and x.
+// builds the tangents). The solver fills dinv and x.
 //
 // Fields a model does not need (t, o, mu for Frictionless) are never allocated:
 // their views are empty.
@@ -46,11 +45,6 @@ struct Contacts {
   VecD1 phi0;              // gap at the start of the step
   VecD1 mu;                // friction coefficient
   VecD2 dinv;              // n x rows^2: inverse diagonal block, row-major (i, r*rows + c)
-  // The bodies' response to a unit impulse along row r, so that an iteration
-  // gathers no mass or inertia: im (n x 2) the inverse masses of a and b, -1
-  // for a body that does not move; ga, gb (n x 3 rows) I^-1 (r x q_r) of a and
-  // of b, row r's components at (i, 3r + k), zero for a body that does not move.
-  VecD2 im, ga, gb;
   VecD2 x;                 // n x rows: impulse (normal, t, o)
 
   Contacts() = default;
@@ -68,9 +62,6 @@ struct Contacts {
       phi0.resize(cap);
       for (VecD2* f : {&n, &ra, &rb}) f->resize(cap, 3);
       dinv.resize(cap, rows * rows);
-      im.resize(cap, 2);
-      ga.resize(cap, 3 * rows);
-      gb.resize(cap, 3 * rows);
       x.resize(cap, rows);
       if constexpr (Model::friction) {
         t.resize(cap, 3);
@@ -96,7 +87,7 @@ struct Contacts {
     D1View<std::uint32_t> a, b;
     VecD2View n, t, o, ra, rb;
     VecD1View phi0, mu;
-    VecD2View dinv, im, ga, gb, x;
+    VecD2View dinv, x;
 
     GPUSOLVE_HD std::size_t size() const { return count; }
 
@@ -157,9 +148,6 @@ struct Contacts {
                 logical(phi0.view(), n_),
                 logical(mu.view(), n_),
                 logical(dinv.view(), n_),
-                logical(im.view(), n_),
-                logical(ga.view(), n_),
-                logical(gb.view(), n_),
                 logical(x.view(), n_)};
   }
 

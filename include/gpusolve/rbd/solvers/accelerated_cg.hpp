@@ -213,7 +213,7 @@ struct Classify {
       Model::project(dx, mu);
       for (std::size_t r = 0; r < R; ++r) dx[r] -= x[r];
       const detail::Frame<T, Model, CV> f(c, i);
-      const detail::BodyResponse<T> d(c, i, f, dx);
+      const detail::BodyResponse<T> d(phi.b, c, i, f.world(dx));
       const math::Vector3<T> du =
           detail::point_velocity(d.dva, d.dwa, d.ra) - detail::point_velocity(d.dvb, d.dwb, d.rb);
       T s = 0;
@@ -270,7 +270,7 @@ struct Direction {
     step[i] = free ? feasible_step(x, d, mu) : std::numeric_limits<T>::infinity();
     uphill[i] = T(0), descent[i] = s;
     const detail::Frame<T, Model, CV> f(c, i);
-    detail::BodyResponse<T>(c, i, f, d).send(jacobi.sink, i);
+    detail::BodyResponse<T>(phi.b, c, i, f.world(d)).send(jacobi.sink, i);
   }
 };
 

@@ -52,30 +52,21 @@ GPUSOLVE_HD math::Vector3<T> point_velocity(const math::Vector3<T>& v, const mat
   return v + w % r;
 }
 
-// The velocity changes of a contact's two bodies caused by the impulse change
-// dx (contact frame f) acting on a and its opposite on b at the contact's
-// points, and whether each body moves (a fixed body takes no change), from
-// the contact's own response (Contacts::im, ga, gb: no body's mass or inertia
-// is gathered). Everything is loaded here, before any store, so that the
-// loads overlap.
+// The velocity changes of a contact's two bodies caused by impulse p (world
+// coordinates) acting on a and -p on b at the contact's points, and whether
+// each body moves (a fixed body takes no change). Everything is loaded here,
+// before any store, so that the loads overlap.
 template <class T>
 struct BodyResponse {
   std::uint32_t ia, ib;
   bool move_a, move_b;
   math::Vector3<T> ra, rb, dva, dwa, dvb, dwb;
-  template <class CV, class Model, std::size_t R>
-  GPUSOLVE_HD BodyResponse(const CV& c, std::size_t i, const Frame<T, Model, CV>& f, const T (&dx)[R])
-      : ia(c.a[i]), ib(c.b[i]), ra(load3<T>(c.ra, i)), rb(load3<T>(c.rb, i)) {
-    static_assert(R == Model::rows, "BodyResponse: one impulse change per row of the model");
-    const T ma = c.im(i, 0), mb = c.im(i, 1);
-    move_a = ma >= T(0), move_b = mb >= T(0);
-    const math::Vector3<T> p = f.world(dx);
-    dva = (move_a ? ma : T(0)) * p, dvb = -((move_b ? mb : T(0)) * p);
-    dwa = math::Vector3<T>(T(0), T(0), T(0)), dwb = dwa;
-    for (std::size_t r = 0; r < R; ++r) {
-      dwa += dx[r] * math::Vector3<T>(c.ga(i, 3 * r), c.ga(i, 3 * r + 1), c.ga(i, 3 * r + 2));
-      dwb -= dx[r] * math::Vector3<T>(c.gb(i, 3 * r), c.gb(i, 3 * r + 1), c.gb(i, 3 * r + 2));
-    }
+  template <class BV, class CV>
+  GPUSOLVE_HD BodyResponse(const BV& b, const CV& c, std::size_t i, const math::Vector3<T>& p)
+      : ia(c.a[i]), ib(c.b[i]), move_a(b.moving(ia)), move_b(b.moving(ib)), ra(load3<T>(c.ra, i)),
+        rb(load3<T>(c.rb, i)) {
+    dva = b.inv_mass[ia] * p, dwa = load9<T>(b.inv_inertia, ia) * (ra % p);
+    dvb = -(b.inv_mass[ib] * p), dwb = -(load9<T>(b.inv_inertia, ib) * (rb % p));
   }
   // Hands contact i's changes to the sink: Sink::add(i, response) applies or
   // records those of the moving bodies.
@@ -104,11 +95,8 @@ struct DirectSink {
 
 // The contact's own diagonal block W = Q^T (K_a + K_b) Q with, per body,
 // K p = m^-1 p + (I^-1 (r x p)) x r  (= (m^-1 E - r× I^-1 r×) p), projected to
-// the model's rows and inverted into dinv; on the way, the bodies' response
-// to each row's unit impulse (im, ga, gb: I^-1 (r x q_r)), which the
-// iterations apply instead of gathering masses and inertias. Fixed bodies
-// contribute nothing (zero inverse mass and inertia). Run once per solve,
-// after collision detection.
+// the model's rows and inverted into dinv. Fixed bodies contribute nothing
+// (zero inverse mass and inertia). Run once per step, after collision detection.
 template <class Model, class BV, class CV, class T>
 struct InverseBlocks {
   BV b;
@@ -122,16 +110,11 @@ struct InverseBlocks {
     for (int s = 0; s < 2; ++s) {
       const std::uint32_t k = ids[s];
       const T im = b.inv_mass[k];
-      const bool moves = b.moving(k);
       const math::Matrix3x3<T> Iinv = detail::load9<T>(b.inv_inertia, k);
-      const auto& g = s == 0 ? c.ga : c.gb;
       for (std::size_t col = 0; col < R; ++col) {
-        const math::Vector3<T> G = Iinv * (rs[s] % f.q[col]);
-        const math::Vector3<T> Kq = im * f.q[col] + G % rs[s];
+        const math::Vector3<T> Kq = im * f.q[col] + (Iinv * (rs[s] % f.q[col])) % rs[s];
         for (std::size_t row = 0; row < R; ++row) W[row][col] += math::dot(f.q[row], Kq);
-        for (std::size_t d = 0; d < 3; ++d) g(i, 3 * col + d) = moves ? G[d] : T(0);
       }
-      c.im(i, s) = moves ? im : T(-1);
     }
     if constexpr (R == 1) {
       c.dinv(i, 0) = T(1) / W[0][0];
@@ -225,7 +208,7 @@ struct ResolveCollisions {
     if constexpr (Model::friction) mu = c.mu[i];
     Model::project(x, mu);
     for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - y[r];
-    const detail::BodyResponse<T> d(c, i, f, dx);
+    const detail::BodyResponse<T> d(b, c, i, f.world(dx));
     d.send(sink, i);
     it.store(c, i, e, x0, x);
     if (measure) {
@@ -272,7 +255,7 @@ struct ApplyImpulses {
     T x[Model::rows];
     for (std::size_t r = 0; r < Model::rows; ++r) x[r] = c.x(i, r);
     const detail::Frame<T, Model, CV> f(c, i);
-    detail::BodyResponse<T>(c, i, f, x).send(sink, i);
+    detail::BodyResponse<T>(b, c, i, f.world(x)).send(sink, i);
   }
 };
 
