@@ -1,8 +1,8 @@
 // A body's velocity pair (v, w) packed into eight values: v in [0, 3), w in
 // [4, 7), the other two zero. In float that is 32 bytes, one memory sector, so
 // a gather of it or an atomic sum into it costs two 16-byte vector accesses on
-// the GPU instead of six scalar ones into six arrays (Atomic's sums,
-// accumulation.hpp).
+// the GPU instead of six scalar ones into six arrays (Atomic's sums and the
+// update cache's slots, accumulation.hpp).
 #pragma once
 
 #include <cstddef>
