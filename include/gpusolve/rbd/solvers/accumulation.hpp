@@ -172,66 +172,52 @@ struct AtomicApply {
   }
 };
 
-// Body j's velocities V and sum A of a rotated phase, as twelve values (V's
-// six, then A's six): V from the bodies' own velocities in a run's first
-// phase (V_0), from the packed ones after it; every load is issued before the
-// first use.
+// Body j's velocities V and sum A of a rotated phase, as twelve values: V's
+// six from the velocity views, then A's six from the packed sums; every load
+// is issued before the first use.
 template <class T>
-struct RotatedLoad {
-  VectorD2View<T> v, w;  // V_0
-  PackedSums<T> vel;     // V_k for k >= 1, in array k % 2
-  PackedSums<T> sums;    // A_0, A_1, A_2
-  bool first;            // V is V_0, else vel's array `vi`
-  std::size_t vi, q;     // A is sum q
-  GPUSOLVE_HD void operator()(std::size_t j, T (&x)[12]) const {
-    T s[6];
-    if (first) {
-      for (std::size_t c = 0; c < 3; ++c) x[c] = v(j, c), x[3 + c] = w(j, c);
-    } else {
-      vel.at(vi, j).load(s);
-      for (std::size_t c = 0; c < 6; ++c) x[c] = s[c];
-    }
-    sums.at(q, j).load(s);
-    for (std::size_t c = 0; c < 6; ++c) x[6 + c] = s[c];
-  }
-};
+GPUSOLVE_HD void load_rotated(const VectorD2View<T>& v, const VectorD2View<T>& w, const PackedPair<T>& a,
+                              std::size_t j, T (&x)[12]) {
+  T s[6];
+  for (std::size_t c = 0; c < 3; ++c) x[c] = v(j, c), x[3 + c] = w(j, c);
+  a.load(s);
+  for (std::size_t c = 0; c < 6; ++c) x[6 + c] = s[c];
+}
 
 // Atomic's iterations in one phase each (AtomicRotation): the contacts of
 // iteration k see body j's velocities as V_{k-1}(j) + A_{k-1}(j), the last
 // velocities stored plus the last iteration's sums, not yet added.
 template <class T>
 struct RotatedIterate : CurrentIterate<T> {
-  RotatedLoad<T> in;
+  VectorD2View<T> v, w;  // V_{k-1}
+  PackedSums<T> sums;
+  std::size_t q;  // A_{k-1}
   template <class BV>
   GPUSOLVE_HD void velocity(const BV&, std::uint32_t j, math::Vector3<T>& vj, math::Vector3<T>& wj) const {
     T x[12];
-    in(j, x);
+    load_rotated(v, w, sums.at(q, j), j, x);
     vj = math::Vector3<T>(x[0] + x[6], x[1] + x[7], x[2] + x[8]);
     wj = math::Vector3<T>(x[3] + x[9], x[4] + x[10], x[5] + x[11]);
   }
 };
 
-// Body j's share of a rotated phase: V + A (RotatedLoad) into the packed
-// velocities' array `out`, or with `to_bodies` into the bodies' own (v, w),
-// then sum `zero` set to zero, and with `two` sum `also` too. load() and
-// store() split it so that a phase can put other work between them; every
-// load comes before the first store.
+// Body j's share of a rotated phase: out = V + A (V from v, w; A sum q), then
+// sum `zero` set to zero, and with `two` sum `also` too. load() and store()
+// split it so that a phase can put other work between them; every load comes
+// before the first store.
 template <class T>
 struct RotateBody {
-  RotatedLoad<T> in;
-  bool to_bodies;
-  std::size_t out, zero, also;
+  VectorD2View<T> v, w;  // read
+  PackedSums<T> sums;
+  std::size_t q;
+  VectorD2View<T> v_out, w_out;  // written
+  std::size_t zero, also;
   bool two;
-  GPUSOLVE_HD void load(std::size_t j, T (&x)[12]) const { in(j, x); }
+  GPUSOLVE_HD void load(std::size_t j, T (&x)[12]) const { load_rotated(v, w, sums.at(q, j), j, x); }
   GPUSOLVE_HD void store(std::size_t j, const T (&x)[12]) const {
-    T y[6];
-    for (std::size_t c = 0; c < 6; ++c) y[c] = x[c] + x[6 + c];
-    if (to_bodies)
-      for (std::size_t c = 0; c < 3; ++c) in.v(j, c) = y[c], in.w(j, c) = y[3 + c];
-    else
-      in.vel.at(out, j).store(y);
-    in.sums.at(zero, j).zero();
-    if (two) in.sums.at(also, j).zero();
+    for (std::size_t c = 0; c < 3; ++c) v_out(j, c) = x[c] + x[6 + c], w_out(j, c) = x[3 + c] + x[9 + c];
+    sums.at(zero, j).zero();
+    if (two) sums.at(also, j).zero();
   }
   GPUSOLVE_HD void operator()(std::size_t j) const {
     T x[12];
@@ -241,31 +227,31 @@ struct RotateBody {
 };
 
 // Atomic's iterations in one phase and one barrier each, for a solver without
-// momentum. Velocities go from the bodies' own (V_0) through two packed
-// arrays (V_k in array k % 2), the contacts' sums rotate through three (A_0
-// is the accumulator's sink). In the phase of iteration k (1, 2, ... within a
-// run), contacts read V_{k-1} + A_{k-1} (iterate(k)) and add their changes
-// into A_k (sink(k)), and body j writes V_k = V_{k-1} + A_{k-1} and zeroes
-// A_{k+1} (body(k)): no phase reads what it writes. A run starts with A_0 =
-// A_1 = 0 and ends, after its last iteration K and a barrier, with fold(K):
-// the bodies' velocities V_K + A_K, and A_K and A_{K-1} zeroed, so every sum
-// is zero again.
+// momentum. Velocities rotate through two buffers (V_0: the bodies' own, V_1:
+// a copy), the contacts' sums through three (A_0 is the accumulator's sink).
+// In the phase of iteration k (1, 2, ... within a run), contacts read V_{k-1} +
+// A_{k-1} (iterate(k)) and add their changes into A_k (sink(k)), and body j
+// writes V_k = V_{k-1} + A_{k-1} and zeroes A_{k+1} (body(k)): no phase reads
+// what it writes. A run starts with A_0 = A_1 = 0 and V_0 the velocities and
+// ends, after its last iteration K and a barrier, with fold(K): the bodies'
+// velocities V_K + A_K, and A_K and A_{K-1} zeroed, so every sum is zero again.
 template <class T>
 struct AtomicRotation {
-  VectorD2View<T> v0, w0;
-  PackedSums<T> vel, sums;
-  // V_{k-1} and A_{k-1}: what phase k reads.
-  GPUSOLVE_HD RotatedLoad<T> before(std::size_t k) const {
-    return {v0, w0, vel, sums, k == 1, (k - 1) % 2, (k + 2) % 3};
+  VectorD2View<T> v0, w0, v1, w1;
+  PackedSums<T> sums;
+  GPUSOLVE_HD RotatedIterate<T> iterate(std::size_t k) const {
+    const bool p = k % 2 == 0;  // V_{k-1} is V_1
+    return {{}, p ? v1 : v0, p ? w1 : w0, sums, (k + 2) % 3};
   }
-  GPUSOLVE_HD RotatedIterate<T> iterate(std::size_t k) const { return {{}, before(k)}; }
   GPUSOLVE_HD AtomicSink<T> sink(std::size_t k) const { return {sums, k % 3}; }
   GPUSOLVE_HD RotateBody<T> body(std::size_t k) const {
+    const bool p = k % 2 == 0;
     const std::size_t z = (k + 1) % 3;
-    return {before(k), false, k % 2, z, z, false};
+    return {p ? v1 : v0, p ? w1 : w0, sums, (k + 2) % 3, p ? v0 : v1, p ? w0 : w1, z, z, false};
   }
   GPUSOLVE_HD RotateBody<T> fold(std::size_t k) const {
-    return {{v0, w0, vel, sums, false, k % 2, k % 3}, true, 0, k % 3, (k + 2) % 3, true};
+    const bool p = k % 2 == 1;  // V_k is V_1
+    return {p ? v1 : v0, p ? w1 : w0, sums, k % 3, v0, w0, k % 3, (k + 2) % 3, true};
   }
 };
 
@@ -363,15 +349,16 @@ class Accumulator<Atomic, Device, T> {
   // After prepare(): the rotation over b's velocities.
   template <class BV>
   detail::AtomicRotation<T> rotation(const BV& b) {
-    detail::ensure_size(velocities_, 2 * detail::packed_width * bodies_);
-    return {b.v, b.w, {velocities_.data(), bodies_}, sums()};
+    detail::ensure_size(copy_, b.size(), 6);
+    const auto c = copy_.view();
+    return {b.v, b.w, {c.ptr, b.size(), 3, c.pitch}, {c.ptr + 3 * c.pitch, b.size(), 3, c.pitch}, sums()};
   }
   std::size_t passes() const { return 0; }
 
  private:
   detail::PackedSums<T> sums() { return {sums_.data(), bodies_}; }
   VectorD1<T, device_is<Device>> sums_;  // A_0 (the sink), A_1, A_2, packed
-  VectorD1<T, device_is<Device>> velocities_;  // the rotation's V_k, k >= 1, packed
+  VectorD2<T, device_is<Device>> copy_;  // V_1 of the rotation: v then w
   std::size_t bodies_ = 0;
 };
 
