@@ -26,21 +26,23 @@ struct PackedPair {
     if constexpr (std::is_same_v<T, float>) {
       const float4 a = reinterpret_cast<const float4*>(p)[0], b = reinterpret_cast<const float4*>(p)[1];
       x[0] = a.x, x[1] = a.y, x[2] = a.z, x[3] = b.x, x[4] = b.y, x[5] = b.z;
-      return;
-    }
+    } else
 #endif
-    for (std::size_t c = 0; c < 3; ++c) x[c] = p[c], x[3 + c] = p[4 + c];
+    {
+      for (std::size_t c = 0; c < 3; ++c) x[c] = p[c], x[3 + c] = p[4 + c];
+    }
   }
   GPUSOLVE_HD void store(const T (&x)[6]) const {
 #if GPUSOLVE_DEVICE_CODE
     if constexpr (std::is_same_v<T, float>) {
       reinterpret_cast<float4*>(p)[0] = make_float4(x[0], x[1], x[2], 0.f);
       reinterpret_cast<float4*>(p)[1] = make_float4(x[3], x[4], x[5], 0.f);
-      return;
-    }
+    } else
 #endif
-    for (std::size_t c = 0; c < 3; ++c) p[c] = x[c], p[4 + c] = x[3 + c];
-    p[3] = p[7] = T(0);
+    {
+      for (std::size_t c = 0; c < 3; ++c) p[c] = x[c], p[4 + c] = x[3 + c];
+      p[3] = p[7] = T(0);
+    }
   }
   GPUSOLVE_HD void zero() const {
     const T z[6] = {};
@@ -52,12 +54,13 @@ struct PackedPair {
     if constexpr (std::is_same_v<T, float>) {
       atomicAdd(reinterpret_cast<float4*>(p), make_float4(v[0], v[1], v[2], 0.f));
       atomicAdd(reinterpret_cast<float4*>(p) + 1, make_float4(w[0], w[1], w[2], 0.f));
-      return;
-    }
+    } else
 #endif
-    for (std::size_t c = 0; c < 3; ++c) {
-      cuda::atomic_ref<T, cuda::thread_scope_device>(p[c]).fetch_add(v[c], cuda::std::memory_order_relaxed);
-      cuda::atomic_ref<T, cuda::thread_scope_device>(p[4 + c]).fetch_add(w[c], cuda::std::memory_order_relaxed);
+    {
+      for (std::size_t c = 0; c < 3; ++c) {
+        cuda::atomic_ref<T, cuda::thread_scope_device>(p[c]).fetch_add(v[c], cuda::std::memory_order_relaxed);
+        cuda::atomic_ref<T, cuda::thread_scope_device>(p[4 + c]).fetch_add(w[c], cuda::std::memory_order_relaxed);
+      }
     }
   }
 };

@@ -99,13 +99,17 @@ struct CacheToBodies {
     const std::uint32_t first = start[k], end = start[k + 1];
     const std::uint32_t last = (Sum || end == first) ? end : first + 1;
     // `group` slots at a time, their values loaded without a branch between
-    // them (a slot past the segment loads the segment's first): one memory
-    // round trip per group, not per slot. Each sum keeps the order of slots.
+    // them (predicated): one memory round trip per group, not per slot. Each
+    // sum keeps the order of slots.
     T sv[3] = {}, sw[3] = {};
     for (std::uint32_t p = first; p < last; p += group) {
       T g[group][6];
       GPUSOLVE_UNROLL
-      for (std::uint32_t q = 0; q < group; ++q) cache.at(0, p + q < last ? p + q : first).load(g[q]);
+      for (std::uint32_t q = 0; q < group; ++q)
+        if (p + q < last)
+          cache.at(0, p + q).load(g[q]);
+        else
+          for (std::size_t c = 0; c < 6; ++c) g[q][c] = T(0);
       GPUSOLVE_UNROLL
       for (std::uint32_t q = 0; q < group; ++q)
         if (p + q < last)
