@@ -1,8 +1,10 @@
 // A body's velocity pair (v, w) packed into eight values: v in [0, 3), w in
 // [4, 7), the other two zero. In float that is 32 bytes, one memory sector, so
 // a gather of it or an atomic sum into it costs two 16-byte vector accesses on
-// the GPU instead of six scalar ones into six arrays (Atomic's sums and the
-// update cache's slots, accumulation.hpp).
+// the GPU instead of six scalar ones into six arrays (Atomic's sums,
+// accumulation.hpp). The update cache keeps its six arrays: a body's segment
+// of slots is contiguous, so its scalar loads coalesce, and packed slots
+// measured slower at small sizes.
 #pragma once
 
 #include <cstddef>

@@ -52,17 +52,21 @@ class Accumulator;
 
 namespace detail {
 
+template <class Device, class T>
+using Vec3Store = VectorD2<T, device_is<Device>>;
+
 // Contact i's changes into the update cache, entry 2i for body a and 2i + 1
-// for body b; both slots are looked up before the first store. The slots are
-// packed (packed_velocity.hpp): a side's store is two vector stores.
+// for body b; both slots are looked up before the first store.
 template <class T>
 struct CacheSink {
-  PackedSums<T> cache;  // one sum: the slots
+  VectorD2View<T> dv, dw;
   VectorD1View<std::uint32_t> slot;
   GPUSOLVE_HD void add(std::size_t i, const BodyResponse<T>& d) const {
     const std::uint32_t pa = slot[2 * i], pb = slot[2 * i + 1];
-    if (d.move_a) cache.at(0, pa).store({d.dva[0], d.dva[1], d.dva[2], d.dwa[0], d.dwa[1], d.dwa[2]});
-    if (d.move_b) cache.at(0, pb).store({d.dvb[0], d.dvb[1], d.dvb[2], d.dwb[0], d.dwb[1], d.dwb[2]});
+    if (d.move_a)
+      for (std::size_t k = 0; k < 3; ++k) dv(pa, k) = d.dva[k], dw(pa, k) = d.dwa[k];
+    if (d.move_b)
+      for (std::size_t k = 0; k < 3; ++k) dv(pb, k) = d.dvb[k], dw(pb, k) = d.dwb[k];
   }
 };
 
@@ -71,17 +75,13 @@ struct CacheSink {
 // (the thesis zeroed them, which forced a reset every iteration).
 template <class T>
 struct ReduceVelocityUpdates {
-  PackedSums<T> cache;
+  VectorD2View<T> dv, dw;
   VectorD1View<std::uint32_t> rank;
   std::uint32_t o;
   GPUSOLVE_HD void operator()(std::size_t p) const {
     const std::uint32_t r = rank[p];
     if ((r & o) == 0 || (r & (o - 1)) != 0) return;
-    T x[6], y[6];
-    cache.at(0, p - o).load(x);
-    cache.at(0, p).load(y);
-    for (std::size_t k = 0; k < 6; ++k) x[k] += y[k];
-    cache.at(0, p - o).store(x);
+    for (std::size_t k = 0; k < 3; ++k) dv(p - o, k) += dv(p, k), dw(p - o, k) += dw(p, k);
   }
 };
 
@@ -91,7 +91,7 @@ struct ReduceVelocityUpdates {
 template <class BV, class T, bool Sum, class Iterate>
 struct CacheToBodies {
   BV b;
-  PackedSums<T> cache;
+  VectorD2View<T> dv, dw;
   VectorD1View<std::uint32_t> start;
   Iterate iterate;
   static constexpr std::uint32_t group = 4;
@@ -99,21 +99,19 @@ struct CacheToBodies {
     const std::uint32_t first = start[k], end = start[k + 1];
     const std::uint32_t last = (Sum || end == first) ? end : first + 1;
     // `group` slots at a time, their values loaded without a branch between
-    // them (predicated): one memory round trip per group, not per slot. Each
+    // them: one memory round trip per group, not per slot and component. Each
     // sum keeps the order of slots.
     T sv[3] = {}, sw[3] = {};
     for (std::uint32_t p = first; p < last; p += group) {
-      T g[group][6];
+      T gv[group][3], gw[group][3];
+      GPUSOLVE_UNROLL
+      for (std::uint32_t q = 0; q < group; ++q)
+        for (std::size_t c = 0; c < 3; ++c)
+          gv[q][c] = p + q < last ? dv(p + q, c) : T(0), gw[q][c] = p + q < last ? dw(p + q, c) : T(0);
       GPUSOLVE_UNROLL
       for (std::uint32_t q = 0; q < group; ++q)
         if (p + q < last)
-          cache.at(0, p + q).load(g[q]);
-        else
-          for (std::size_t c = 0; c < 6; ++c) g[q][c] = T(0);
-      GPUSOLVE_UNROLL
-      for (std::uint32_t q = 0; q < group; ++q)
-        if (p + q < last)
-          for (std::size_t c = 0; c < 3; ++c) sv[c] += g[q][c], sw[c] += g[q][3 + c];
+          for (std::size_t c = 0; c < 3; ++c) sv[c] += gv[q][c], sw[c] += gw[q][c];
     }
     iterate.add(b, k, sv, sw);
   }
@@ -273,23 +271,24 @@ class CacheStore {
     size_for(c);
     return grouping_.program(b, c, stream);
   }
-  CacheSink<T> sink() { return CacheSink<T>{cache(), grouping_.view().slot}; }
+  CacheSink<T> sink() { return CacheSink<T>{dv_.view(), dw_.view(), grouping_.view().slot}; }
  protected:
   template <bool Sum, class BV, class Iterate>
   CacheApply<BV, T, Sum, Iterate> cache_program(const BV& b, std::size_t passes, const Iterate& it) {
     const auto g = grouping_.view();
-    return {{cache(), g.rank, 0}, passes, entries_, b.size(), {b, cache(), g.start, it}};
+    return {{dv_.view(), dw_.view(), g.rank, 0}, passes, entries_, b.size(),
+            {b, dv_.view(), dw_.view(), g.start, it}};
   }
   ContactGrouping<Device> grouping_;
-  VectorD1<T, device_is<Device>> cache_;  // the slots, packed
+  Vec3Store<Device, T> dv_, dw_;
   std::size_t entries_ = 0;
 
  private:
-  PackedSums<T> cache() { return {cache_.data(), entries_}; }
   template <class CV>
   void size_for(const CV& c) {
+    ensure_size(dv_, 2 * c.size(), 3);
+    ensure_size(dw_, 2 * c.size(), 3);
     entries_ = 2 * c.size();
-    ensure_size(cache_, packed_width * entries_);
   }
 };
 
