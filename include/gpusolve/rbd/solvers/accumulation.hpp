@@ -5,8 +5,6 @@
 #include <cstddef>
 #include <cstdint>
 
-#include <cuda/atomic>
-
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/config.hpp"
