@@ -13,8 +13,10 @@ using namespace rbd_test;
 
 namespace {
 
-template <class Strategy, class MomentumTag>
-std::pair<std::vector<float>, SolverStats<float>> solve_once(bool persistent, std::size_t check_every) {
+// Runs to the cap unless `tune` lowers it or changes the tolerance or omega.
+template <class Strategy, class MomentumTag, class Tune = void (*)(SolverSettings<float>&)>
+std::pair<std::vector<float>, SolverStats<float>> solve_once(bool persistent, std::size_t check_every,
+                                                             Tune tune = [](SolverSettings<float>&) {}) {
   auto set = pile<float>(6, 5);
   BodyManager<device::gpu, float> m(set);
   m.syncDeviceFull();
@@ -22,6 +24,7 @@ std::pair<std::vector<float>, SolverStats<float>> solve_once(bool persistent, st
   SolverSettings<float> s;
   s.dt = 0.01f, s.margin = 0.02f, s.friction = 0.4f;
   s.tolerance = 1e-6f, s.max_iterations = 120, s.check_every = check_every;
+  tune(s);
   s.persistent_max_contacts = persistent ? ~std::size_t(0) : 0;
   prepare_solve(m.device(), c, s);
   const auto stats = JacobiSolver<device::gpu, float, ConeFriction, Strategy, MomentumTag>().solve(m.device(), c, s);
@@ -53,6 +56,50 @@ TEST_CASE("GPU persistent Jacobi kernel equals the launches bit for bit", "[rbd_
     CHECK(cache.second.reduction_passes > 1);
     CHECK(cache.first == solve_once<UpdateCache, NoMomentum>(false, every).first);
     CHECK(max_abs_diff(cache.first, gather.first) < 1e-4f);  // same iteration, summed in another order
+  }
+}
+
+// The persistent kernel applies the residual checks itself (ConvergenceRule on
+// the device); the launches read each check back. Both must stop at the same
+// check for the same reason and leave the same bits.
+TEST_CASE("GPU persistent kernel stops at the same check as the launches: converged, diverged, retried",
+          "[rbd_persistent][gpu]") {
+  const auto same = [](const auto& a, const auto& b) {
+    CHECK(a.first == b.first);
+    CHECK(a.second.status == b.second.status);
+    CHECK(a.second.iterations == b.second.iterations);
+    CHECK(a.second.total_iterations == b.second.total_iterations);
+    CHECK(a.second.retries == b.second.retries);
+    CHECK(a.second.omega == b.second.omega);
+    CHECK(a.second.residuals == b.second.residuals);
+    CHECK(a.second.checked_at == b.second.checked_at);
+  };
+  {
+    INFO("converges at a check before the cap");
+    const auto tune = [](SolverSettings<float>& s) { s.tolerance = 1e-3f, s.max_iterations = 2000; };
+    const auto fused = solve_once<Gather, NoMomentum>(true, 5, tune);
+    REQUIRE(fused.second.status == SolverStatus::converged);
+    CHECK(fused.second.iterations > 100);  // on the CPU backend: 545, after 109 checks
+    CHECK(fused.second.iterations < 2000);
+    CHECK(fused.second.checked_at.size() == fused.second.iterations / 5);
+    same(fused, solve_once<Gather, NoMomentum>(false, 5, tune));
+  }
+  {
+    INFO("over-relaxed: diverges, then converges on a retry at a smaller omega");
+    const auto tune = [](SolverSettings<float>& s) {
+      s.omega = 1.9f, s.tolerance = 2e-2f, s.max_iterations = 2000, s.max_retries = 3;
+    };
+    const auto fused = solve_once<Gather, NoMomentum>(true, 10, tune);
+    REQUIRE(fused.second.retries >= 1);
+    CHECK(fused.second.total_iterations > fused.second.iterations);
+    same(fused, solve_once<Gather, NoMomentum>(false, 10, tune));
+  }
+  {
+    INFO("over-relaxed without retries: reported diverged");
+    const auto tune = [](SolverSettings<float>& s) { s.omega = 1.9f, s.max_iterations = 2000, s.max_retries = 0; };
+    const auto fused = solve_once<Gather, NoMomentum>(true, 10, tune);
+    CHECK(fused.second.status == SolverStatus::diverged);
+    same(fused, solve_once<Gather, NoMomentum>(false, 10, tune));
   }
 }
 

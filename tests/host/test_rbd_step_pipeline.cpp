@@ -183,6 +183,45 @@ TEST_CASE("the solver's runs of iterations end at each residual check and at the
   CHECK(m.next_check(43) == 49);
   CHECK(m.next_check(50) == 50);  // the last iteration always checks, off the grid of 7
   for (std::size_t it = 1; it <= 50; ++it) CHECK(m.checks(m.next_check(it)));
-  s.check_every = 50;
-  CHECK(m.next_check(1) == 50);  // the defaults: one run, one check
+  CHECK(ConvergenceRule<double>(s).max_checks() == 8);  // 7, 14, ..., 49 and 50
+  CHECK(ConvergenceRule<double>(SolverSettings<double>{}).next_check(1) == 50);  // the defaults: one run, one check
+  CHECK(ConvergenceRule<double>(SolverSettings<double>{}).max_checks() == 1);
+}
+
+TEST_CASE("the convergence rule stops where the host's monitor stops and records the same checks", "[rbd_step]") {
+  SolverSettings<double> s;
+  s.check_every = 4, s.max_iterations = 40, s.tolerance = 1e-3;
+  // Falling, then growing for three checks past ten times the smallest: diverged at iteration 24.
+  const std::vector<double> residuals = {1.0, 0.5, 0.01, 0.02, 0.05, 0.2, 0.1};
+  SolverStats<double> monitored;
+  ConvergenceMonitor<double> m(s, monitored);
+  ConvergenceRule<double> rule(s);
+  std::vector<double> seen;
+  for (std::size_t k = 0, it = 0; k < residuals.size(); ++k) {
+    it = rule.next_check(it + 1);
+    seen.push_back(residuals[k]);
+    const bool stops = rule.stop(it, residuals[k]);
+    CHECK(stops == m.stop(it, residuals[k]));
+    if (stops) break;
+  }
+  CHECK(rule.status == SolverStatus::diverged);
+  CHECK(rule.iterations == 24);
+  SolverStats<double> recorded;
+  record_checks(rule, seen, recorded);
+  CHECK(recorded.status == monitored.status);
+  CHECK(recorded.iterations == monitored.iterations);
+  CHECK(recorded.residuals == monitored.residuals);
+  CHECK(recorded.checked_at == monitored.checked_at);
+  CHECK(recorded.checked_at == std::vector<std::size_t>{4, 8, 12, 16, 20, 24});
+  // Converged below the tolerance; and at the cap, off the grid of checks.
+  ConvergenceRule<double> converging(s);
+  CHECK_FALSE(converging.stop(4, 0.5));
+  CHECK(converging.stop(8, 1e-4));
+  CHECK(converging.status == SolverStatus::converged);
+  s.max_iterations = 10;
+  ConvergenceRule<double> capped(s);
+  CHECK_FALSE(capped.stop(8, 0.5));
+  CHECK(capped.next_check(9) == 10);
+  CHECK(capped.stop(10, 0.4));
+  CHECK(capped.status == SolverStatus::max_iterations);
 }

@@ -14,7 +14,9 @@
 // first iteration of a run, and ends with e.sync() if it queued any. The same
 // programs run under two executors: LaunchExec (launch_exec.hpp, a launch per
 // phase, both backends) and GridExec here (phases of one kernel, GPU). A phase
-// is the same functor either way.
+// is the same functor either way. run() queues a fixed number of iterations;
+// run_checked() a whole solve, its residual checks and stopping rule applied
+// inside the kernel, so the host waits once per solve, not once per check.
 #pragma once
 
 #include <cstddef>
@@ -112,6 +114,52 @@ __global__ void __launch_bounds__(persistent_block_size)
 }
 #endif
 
+// What a checked run (persistent_checked_kernel) leaves, written by one thread
+// at the kernel's end into memory the host reads (pinned): its rule after the
+// last check (the verdict: ConvergenceRule's iterations and status) and the
+// number of checks, whose residuals are in the history in order.
+template <class Rule>
+struct CheckedRun {
+  Rule rule;
+  std::size_t checks;
+};
+
+#if GPUSOLVE_HAS_NVCC
+// start(e), then runs of iterations up to each check of `rule` (next_check,
+// stop(it, residual): ConvergenceRule), each run's last iteration reducing
+// the residual into *residual, and `between` (a program ending in e.sync())
+// after a check that does not stop. Each block's first thread applies the
+// rule to the reduced residual, the same in every block, so the grid leaves
+// the loop together. The rule's state lives in shared memory: in registers it
+// would be live across every phase of the iterations.
+template <class Start, class Program, class Between, class Rule, class T>
+__global__ void __launch_bounds__(persistent_block_size)
+    persistent_checked_kernel(Start start, Program program, Between between, Rule rule, const T* residual,
+                              CheckedRun<Rule>* record, T* history, T* partials, std::uint32_t* scan_totals) {
+  static_assert(std::is_trivially_default_constructible_v<CheckedRun<Rule>>);
+  const GridExec<T> e{partials, scan_totals};
+  __shared__ CheckedRun<Rule> run;
+  __shared__ bool stop;
+  if (threadIdx.x == 0) run = CheckedRun<Rule>{rule, 0};
+  start(e);
+  for (std::size_t first = 1;;) {
+    const std::size_t last = rule.next_check(first);
+    for (std::size_t k = first; k <= last; ++k) program(e, k - first + 1, k == last);
+    if (threadIdx.x == 0) {
+      const T r = *residual;  // rewritten only after the next run's first barrier
+      if (blockIdx.x == 0) history[run.checks] = r;
+      ++run.checks;
+      stop = run.rule.stop(last, r);
+    }
+    __syncthreads();
+    if (stop) break;
+    between(e);
+    first = last + 1;
+  }
+  if (blockIdx.x == 0 && threadIdx.x == 0) *record = run;
+}
+#endif
+
 // The start program of a run that starts nothing.
 struct NoStart {
   template <class E>
@@ -145,36 +193,78 @@ class PersistentLoop {
   void run(const Start& start, const Program& program, std::size_t count, std::size_t width, stream_t stream) {
 #if GPUSOLVE_HAS_NVCC
     if constexpr (std::is_same_v<Device, device::gpu>) {
-      auto* kernel = &persistent_iterations_kernel<Start, Program, T>;
-      static const int per_sm = [kernel] {
-        int blocks = 0;
-        GPUSOLVE_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks, kernel, persistent_block_size, 0));
-        return blocks;
-      }();
-      if (per_sm == 0)
-        throw UnsupportedError("gpusolve: the persistent solver kernel does not fit on one multiprocessor");
-      const std::size_t wanted = (width + persistent_block_size - 1) / persistent_block_size;
-      const std::size_t resident = static_cast<std::size_t>(per_sm) * static_cast<std::size_t>(gpusolve::detail::sm_count());
-      const std::size_t blocks = wanted == 0 ? 1 : (wanted < resident ? wanted : resident);
-      blocks_ = blocks;
-      if (partials_.size_x() < blocks) partials_.resize(blocks);
-      if (scan_totals_.size_x() < blocks) scan_totals_.resize(blocks);
-      T* partials = partials_.data();
-      std::uint32_t* scan_totals = scan_totals_.data();
+      T* partials = nullptr;
+      std::uint32_t* scan_totals = nullptr;
       void* args[] = {const_cast<Start*>(&start), const_cast<Program*>(&program), &count, &partials, &scan_totals};
-      GPUSOLVE_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(kernel), dim3(unsigned(blocks)),
-                                                      dim3(persistent_block_size), args, 0, stream));
+      launch_cooperative(&persistent_iterations_kernel<Start, Program, T>, width, args, partials, scan_totals, stream);
       return;
     }
 #endif
     (void)start, (void)program, (void)count, (void)width, (void)stream;
-    throw UnsupportedError("gpusolve: the persistent solver kernel needs device::gpu and nvcc");
+    unavailable();
+  }
+
+  // Queues `start` and the runs of `program` between the checks of `rule`
+  // (persistent_checked_kernel) as one cooperative kernel: the checks need no
+  // host round trip. Its verdict goes to *record and the residuals of its
+  // checks to history[0, record->checks): memory the host can read (pinned)
+  // once the stream is done, without a copy; history holds rule.max_checks().
+  template <class Start, class Program, class Between, class Rule>
+  void run_checked(const Start& start, const Program& program, const Between& between, const Rule& rule,
+                   const T* residual, CheckedRun<Rule>* record, T* history, std::size_t width, stream_t stream) {
+#if GPUSOLVE_HAS_NVCC
+    if constexpr (std::is_same_v<Device, device::gpu>) {
+      T* partials = nullptr;
+      std::uint32_t* scan_totals = nullptr;
+      void* args[] = {const_cast<Start*>(&start), const_cast<Program*>(&program), const_cast<Between*>(&between),
+                      const_cast<Rule*>(&rule),   const_cast<T**>(&residual),     &record,
+                      &history,                   &partials,                      &scan_totals};
+      launch_cooperative(&persistent_checked_kernel<Start, Program, Between, Rule, T>, width, args, partials,
+                         scan_totals, stream);
+      return;
+    }
+#endif
+    (void)start, (void)program, (void)between, (void)rule, (void)residual, (void)record, (void)history, (void)width,
+        (void)stream;
+    unavailable();
   }
 
   // The grid of the last run, in blocks of persistent_block_size threads.
   std::size_t blocks() const { return blocks_; }
 
  private:
+  [[noreturn]] static void unavailable() {
+    throw UnsupportedError("gpusolve: the persistent solver kernel needs device::gpu and nvcc");
+  }
+
+#if GPUSOLVE_HAS_NVCC
+  // Launches `kernel` cooperatively on at most one block per
+  // persistent_block_size indices of `width` and no more blocks than the GPU
+  // holds at once; its arguments `args` end with the per-block scratch, whose
+  // pointers `partials` and `scan_totals` are set here.
+  template <class Kernel>
+  void launch_cooperative(Kernel* kernel, std::size_t width, void** args, T*& partials, std::uint32_t*& scan_totals,
+                          stream_t stream) {
+    static const int per_sm = [kernel] {
+      int blocks = 0;
+      GPUSOLVE_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks, kernel, persistent_block_size, 0));
+      return blocks;
+    }();
+    if (per_sm == 0)
+      throw UnsupportedError("gpusolve: the persistent solver kernel does not fit on one multiprocessor");
+    const std::size_t wanted = (width + persistent_block_size - 1) / persistent_block_size;
+    const std::size_t resident = static_cast<std::size_t>(per_sm) * static_cast<std::size_t>(gpusolve::detail::sm_count());
+    const std::size_t blocks = wanted == 0 ? 1 : (wanted < resident ? wanted : resident);
+    blocks_ = blocks;
+    if (partials_.size_x() < blocks) partials_.resize(blocks);
+    if (scan_totals_.size_x() < blocks) scan_totals_.resize(blocks);
+    partials = partials_.data();
+    scan_totals = scan_totals_.data();
+    GPUSOLVE_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(kernel), dim3(unsigned(blocks)),
+                                                    dim3(persistent_block_size), args, 0, stream));
+  }
+#endif
+
   std::size_t blocks_ = 0;
   VectorD1<T, device_is<Device>> partials_;
   VectorD1<std::uint32_t, device_is<Device>> scan_totals_;

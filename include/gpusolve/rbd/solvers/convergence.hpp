@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "gpusolve/container/vector_view.hpp"
 #include "gpusolve/core/config.hpp"
@@ -53,50 +55,102 @@ class ResidualCheck {
   MaxReducer<Device, T> reduce_;
 };
 
+// The stopping and divergence rules of the residual checks, as plain data: the
+// host applies them between runs of iterations (ConvergenceMonitor), and a
+// persistent kernel applies the same rules itself, every thread reaching the
+// same verdict from the same reduced residual (detail/persistent_loop.hpp), so
+// its run of checks needs no host round trip.
 template <class T>
-class ConvergenceMonitor {
- public:
-  ConvergenceMonitor(const SolverSettings<T>& s, SolverStats<T>& stats) : s_(s), stats_(stats) {}
+struct ConvergenceRule {
+  T tolerance, divergence_growth;
+  std::size_t check_every, max_iterations, divergence_checks;
+  T previous, smallest;
+  std::size_t growing;
+  std::size_t iterations;  // of the last check
+  SolverStatus status;
+
+  ConvergenceRule() = default;  // trivial, so that a kernel can keep one in shared memory
+  explicit ConvergenceRule(const SolverSettings<T>& s)
+      : tolerance(s.tolerance),
+        divergence_growth(s.divergence_growth),
+        check_every(s.check_every),
+        max_iterations(s.max_iterations),
+        divergence_checks(s.divergence_checks),
+        previous(std::numeric_limits<T>::infinity()),
+        smallest(std::numeric_limits<T>::infinity()),
+        growing(0),
+        iterations(0),
+        status(SolverStatus::converged) {}
 
   // Whether iteration `it` (1-based) measures the residual: every check_every
   // iterations and always the last one, so the final residual is known.
-  bool checks(std::size_t it) const { return it % s_.check_every == 0 || it == s_.max_iterations; }
+  GPUSOLVE_HD bool checks(std::size_t it) const { return it % check_every == 0 || it == max_iterations; }
   // The first iteration from `it` on that checks.
-  std::size_t next_check(std::size_t it) const {
-    const std::size_t k = (it + s_.check_every - 1) / s_.check_every * s_.check_every;
-    return k < s_.max_iterations ? k : s_.max_iterations;
+  GPUSOLVE_HD std::size_t next_check(std::size_t it) const {
+    const std::size_t k = (it + check_every - 1) / check_every * check_every;
+    return k < max_iterations ? k : max_iterations;
   }
+  // How many checks a solve that runs to max_iterations makes.
+  GPUSOLVE_HD std::size_t max_checks() const { return (max_iterations - 1) / check_every + 1; }
 
-  // Records the residual after iteration `it`; returns true when the solve must stop.
+  // Takes the residual after iteration `it`; true when the solve must stop.
   // Diverged: the residual is not finite (NaN/inf in impulses or velocities), or it
   // grew at `divergence_checks` checks in a row to `divergence_growth` times its
   // smallest value so far. Converged: below the tolerance.
-  bool stop(std::size_t it, T residual) {
-    stats_.iterations = it;
-    stats_.residuals.push_back(residual);
-    stats_.checked_at.push_back(it);
+  GPUSOLVE_HD bool stop(std::size_t it, T residual) {
+    iterations = it;
     if (!(residual <= std::numeric_limits<T>::max())) return finish(SolverStatus::diverged);
-    if (residual < s_.tolerance) return finish(SolverStatus::converged);
-    growing_ = residual > previous_ ? growing_ + 1 : 0;
-    previous_ = residual;
-    smallest_ = residual < smallest_ ? residual : smallest_;
-    if (s_.divergence_checks != 0 && growing_ >= s_.divergence_checks &&
-        residual > s_.divergence_growth * smallest_)
+    if (residual < tolerance) return finish(SolverStatus::converged);
+    growing = residual > previous ? growing + 1 : 0;
+    previous = residual;
+    smallest = residual < smallest ? residual : smallest;
+    if (divergence_checks != 0 && growing >= divergence_checks && residual > divergence_growth * smallest)
       return finish(SolverStatus::diverged);
-    if (it >= s_.max_iterations) return finish(SolverStatus::max_iterations);
+    if (it >= max_iterations) return finish(SolverStatus::max_iterations);
     return false;
   }
 
  private:
-  bool finish(SolverStatus st) {
-    stats_.status = st;
+  GPUSOLVE_HD bool finish(SolverStatus st) {
+    status = st;
     return true;
   }
-  const SolverSettings<T>& s_;
-  SolverStats<T>& stats_;
-  T previous_ = std::numeric_limits<T>::infinity();
-  T smallest_ = std::numeric_limits<T>::infinity();
-  std::size_t growing_ = 0;
 };
+
+// ConvergenceRule applied on the host, recording each check in the solve's
+// statistics (iterations, status and the residual history).
+template <class T>
+class ConvergenceMonitor {
+ public:
+  ConvergenceMonitor(const SolverSettings<T>& s, SolverStats<T>& stats) : rule_(s), stats_(stats) {}
+
+  bool checks(std::size_t it) const { return rule_.checks(it); }
+  std::size_t next_check(std::size_t it) const { return rule_.next_check(it); }
+
+  // Records the residual after iteration `it`; returns true when the solve must stop.
+  bool stop(std::size_t it, T residual) {
+    stats_.residuals.push_back(residual);
+    stats_.checked_at.push_back(it);
+    const bool done = rule_.stop(it, residual);
+    stats_.iterations = rule_.iterations;
+    if (done) stats_.status = rule_.status;
+    return done;
+  }
+
+ private:
+  ConvergenceRule<T> rule_;
+  SolverStats<T>& stats_;
+};
+
+// Records in `stats` the checks a ConvergenceRule made on the device: their
+// residuals in order, the iterations they fell after, and its verdict.
+template <class T>
+void record_checks(const ConvergenceRule<T>& verdict, std::vector<T> residuals, SolverStats<T>& stats) {
+  stats.checked_at.clear();
+  for (std::size_t k = 0, it = 0; k < residuals.size(); ++k) stats.checked_at.push_back(it = verdict.next_check(it + 1));
+  stats.residuals = std::move(residuals);
+  stats.iterations = verdict.iterations;
+  stats.status = verdict.status;
+}
 
 }  // namespace gpusolve::rbd

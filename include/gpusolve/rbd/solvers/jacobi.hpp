@@ -5,10 +5,14 @@
 #include <cstddef>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/launch.hpp"
+#include "gpusolve/memory/buffer.hpp"
+#include "gpusolve/memory/cuda_host_allocator.hpp"
+#include "gpusolve/memory/standard_allocator.hpp"
 #include "gpusolve/rbd/solvers/accumulation.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
@@ -22,6 +26,7 @@
 #include "gpusolve/rbd/detail/reduce.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/detail/stream_marks.hpp"
 #include "gpusolve/rbd/solvers/solver.hpp"
 #include "gpusolve/rbd/solvers/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
@@ -154,6 +159,19 @@ struct AttemptStart {
   }
 };
 
+// The momentum's step after a check that does not stop, with the barrier that
+// a launch boundary gives it on the host: the next run's contacts read its beta.
+template <class Step>
+struct BetweenRuns {
+  Step step;
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e) const {
+    step(e);
+    e.sync();
+  }
+};
+
 }  // namespace detail
 
 // Solves the contact LCP of one time step for the bodies' velocities. On entry
@@ -166,7 +184,9 @@ struct AttemptStart {
 // SolverSettings::max_retries); a retry starts from zero impulses and the
 // velocities the solve began with (before J^T x), i.e. as a cold solve: the
 // starting guess may be what made the first attempt diverge, and the cold start
-// needs no copy of it. Scratch storage is kept between calls. Strategy:
+// needs no copy of it. Under the persistent kernel an attempt's residual
+// checks run on the device (ConvergenceRule), and the host reads the verdict
+// once per attempt. Scratch storage is kept between calls. Strategy:
 // UpdateCache, Atomic or Gather (accumulation.hpp). MomentumTag: NoMomentum
 // (projected Jacobi) or Nesterov (APGD, momentum.hpp).
 template <class Device, class T, class Model, class Strategy = Gather, class MomentumTag = NoMomentum>
@@ -249,31 +269,37 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
               plain, measuring, acc_.program(b, look), momentum_.program(), terms, width, residual_out};
         }
       }();
-      ConvergenceMonitor<T> monitor(s, st);
+      if (persistent) {  // the checks run in the kernel too: the host waits once, for the verdict
+        const auto between = [&] {
+          if constexpr (std::is_same_v<MomentumTag, NoMomentum>)
+            return detail::NoStart{};
+          else
+            return detail::BetweenRuns<decltype(momentum_.program())>{momentum_.program()};
+        }();
+        const ConvergenceRule<T> rule(s);
+        if (history_.size() < rule.max_checks()) history_ = HostBuffer<T>(rule.max_checks());
+        if (record_.size() == 0) record_ = HostBuffer<Record>(1);
+        persistent_.run_checked(start, iteration, between, rule, residual_out, record_.data(), history_.data(), width,
+                                stream);
+        done_.mark(0, stream);
+        done_.wait(0);
+        const Record r = *record_.data();
+        record_checks(r.rule, std::vector<T>(history_.data(), history_.data() + r.checks), st);
+        return;
+      }
       // Iterations `first` ... `last`, the last one measuring the residual.
       auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
         const detail::LaunchExec<Device, T> e{q, &algorithms_};
         for (std::size_t it = first; it <= last; ++it) iteration(e, it - first + 1, it == last);
       };
-      // A run: the start program `begin`, then the iterations (a graph's
-      // kernels stay the same from run to run without the start's).
-      auto run = [&](const auto& begin, std::size_t first, std::size_t last) {
-        if (persistent) {
-          persistent_.run(begin, iteration, last - first + 1, width, stream);
-          return;
-        }
-        begin(launched);
+      ConvergenceMonitor<T> monitor(s, st);
+      for (std::size_t first = 1;;) {
+        const std::size_t last = monitor.next_check(first);
+        if (first == 1) start(launched);  // a graph's kernels stay the same from run to run without the start's
         if (s.graphs)
           graph_.run([&](stream_t q) { iterations(first, last, q); }, stream);
         else
           iterations(first, last, stream);
-      };
-      for (std::size_t first = 1;;) {
-        const std::size_t last = monitor.next_check(first);
-        if (first == 1)
-          run(start, first, last);
-        else
-          run(detail::NoStart{}, first, last);
         if (monitor.stop(last, detail::read_back<Device>(residual_out, 0, stream))) break;
         momentum_.after_iteration(launched);
         first = last + 1;
@@ -290,6 +316,14 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   VectorD1<T, device_is<Device>> residual_out_;  // the residual check's maximum
   detail::GraphReplay<Device> graph_;           // SolverSettings::graphs
   detail::PersistentLoop<Device, T> persistent_;  // SolverSettings::persistent_max_contacts
+  // What the persistent kernel leaves for the host (pinned on the GPU).
+  template <class E>
+  using HostBuffer = memory::Buffer<E, std::conditional_t<std::is_same_v<Device, device::gpu>, memory::CUDAHostAllocator,
+                                                          memory::StandardAllocator>>;
+  using Record = detail::CheckedRun<ConvergenceRule<T>>;
+  HostBuffer<Record> record_;
+  HostBuffer<T> history_;  // the residual of each check of the last attempt
+  detail::StreamMarks<Device, 1> done_;
 };
 
 // The method tag of projected Jacobi (a model of the Solver concept, solver.hpp).
