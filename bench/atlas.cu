@@ -3,7 +3,7 @@
 // penetration and the LCP residual it bought, and whether each step converged.
 //
 // Run: gpusolve_bench_atlas --scene pile|column|hopper [--n 10000,100000] [--ratios 1,100,1000]
-//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,tol0.02] [--margins 0.1]
+//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,tol0.02,check10] [--margins 0.1]
 //        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, PILE.md), N spheres dropped into
@@ -17,7 +17,8 @@
 // Budgets: "default" is SolverSettings{} as a user gets it (tolerance, iteration
 // cap and residual checks as shipped); "itK" runs exactly K iterations per step,
 // the residual measured once after the last; "tolX" iterates to tolerance X
-// (cap 2 000, checked every 10). Every run: the cone model, friction 0.5 (the
+// (cap 2 000, checked every 10); "checkK" is the defaults with the residual
+// checked every K iterations. Every run: the cone model, friction 0.5 (the
 // hopper: 0.1).
 // --warm: SolverSettings::warm_start (default: the library's). --backend cpu
 // runs the same World on device::cpu (no GPU needed; host clock, OpenMP
@@ -96,8 +97,10 @@ SolverSettings<T> settings_for(const Run& r) {
     s.tolerance = T(std::stod(r.budget.substr(3)));
     s.max_iterations = 2000;
     s.check_every = 10;
+  } else if (r.budget.rfind("check", 0) == 0) {
+    s.check_every = std::stoul(r.budget.substr(5));
   } else if (r.budget != "default") {
-    throw InvalidArgumentError("atlas: unknown budget '" + r.budget + "' (default, itK or tolX)");
+    throw InvalidArgumentError("atlas: unknown budget '" + r.budget + "' (default, itK, tolX or checkK)");
   }
   return s;
 }
