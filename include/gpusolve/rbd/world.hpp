@@ -83,9 +83,11 @@ class World {
     return latest_stats();
   }
 
-  // Queues `steps` steps. The host waits only where the step's sizes or the
-  // solver's verdict need it (the contact count after detection, each residual
-  // check), never for timing or statistics. Throws NonFiniteStateError naming
+  // Queues `steps` steps. The host waits only where the step's sizes need it
+  // (the contact count after detection) and, on the solver's launched path or
+  // where a divergence must throw, for the solver's checks; never for timing or
+  // statistics. Under the persistent kernel the solver's verdict is read with
+  // the step's statistics. Throws NonFiniteStateError naming
   // the body and the step when a body's state holds a NaN or infinity: that
   // step is not taken and no body changes.
   void advance(std::size_t steps = 1) {
@@ -116,6 +118,7 @@ class World {
     StepStats<T> stats;
     detail::StreamMarks<Device, 5> marks;  // start, detected, solved, moved, figures written
     bool timed = false;
+    bool verdict_pending = false;  // the solver's verdict is read with the figures (solve_queued)
   };
 
   // The slot of this step still holds the step before the previous one, which
@@ -127,6 +130,7 @@ class World {
     const std::size_t k = steps_ % 2;
     Slot& slot = slots_[k];
     StepStats<T> stats;
+    bool pending = false;
     try {
       if (timing_) slot.marks.mark(0, stream_);
       detection_.set_graphs(s.detection_graph);
@@ -136,7 +140,10 @@ class World {
       if (own_integration) apply_forces(bodies, s.dt, g, stream_);  // the LCP sees v + dt M^-1 f_ext (thesis Eq. 6)
       const bool warm = s.warm_start > 0;
       if (warm) warm_.carry(contacts_.view(), s.warm_start, stream_);
-      stats.solver = solver_.solve(bodies, contacts_, s, stream_, warm);
+      if constexpr (queues_verdict<solver_type, Device, T, Model>::value)  // no wait for the verdict
+        pending = solver_.solve_queued(bodies, contacts_, s, stream_, warm, k, stats.solver);
+      else
+        stats.solver = solver_.solve(bodies, contacts_, s, stream_, warm);
       if (timing_) slot.marks.mark(2, stream_);
       if (figures_.size() == 0) figures_ = Figures(2);
       const auto cv = contacts_.view();
@@ -164,6 +171,7 @@ class World {
       throw;
     }
     slot.stats = stats;
+    slot.verdict_pending = pending;
     slot.timed = timing_;
     current_ = k;
     ++steps_;
@@ -173,6 +181,8 @@ class World {
     Slot& slot = slots_[k];
     slot.marks.wait(4);
     StepStats<T> st = slot.stats;
+    if constexpr (queues_verdict<solver_type, Device, T, Model>::value)
+      if (slot.verdict_pending) solver_.verdict(k, st.solver);
     const StepFigures<T> f = figures_.data()[k];
     st.max_penetration = f.max_penetration;
     st.kinetic_energy = f.kinetic_energy;

@@ -15,8 +15,8 @@
 // programs run under two executors: LaunchExec (launch_exec.hpp, a launch per
 // phase, both backends) and GridExec here (phases of one kernel, GPU). A phase
 // is the same functor either way. run() queues a fixed number of iterations;
-// run_checked() a whole solve, its residual checks and stopping rule applied
-// inside the kernel, so the host waits once per solve, not once per check.
+// run_checked() a whole solve, its residual checks, stopping rule and retries
+// applied inside the kernel, so the host needs to wait for nothing but its verdict.
 #pragma once
 
 #include <cstddef>
@@ -114,49 +114,79 @@ __global__ void __launch_bounds__(persistent_block_size)
 }
 #endif
 
-// What a checked run (persistent_checked_kernel) leaves, written by one thread
-// at the kernel's end into memory the host reads (pinned): its rule after the
-// last check (the verdict: ConvergenceRule's iterations and status) and the
-// number of checks, whose residuals are in the history in order.
+// What a checked solve (persistent_checked_kernel) leaves, written by one
+// thread at the kernel's end into memory the host reads (pinned): the last
+// attempt's rule after its last check (the verdict: ConvergenceRule's
+// iterations and status) and its number of checks, whose residuals are in the
+// history in order; the retries and the iterations of every attempt.
 template <class Rule>
 struct CheckedRun {
   Rule rule;
-  std::size_t checks;
+  std::size_t checks, retries, total_iterations;
+};
+
+// The retries of a checked solve: an attempt whose rule ends diverged, while
+// fewer than `max` retries were made, multiplies *scale by `factor` (one
+// thread, visible to the start program after its first barrier) and starts
+// the next attempt.
+template <class T>
+struct RetryRule {
+  T factor;
+  std::size_t max;
+  T* scale;
 };
 
 #if GPUSOLVE_HAS_NVCC
-// start(e), then runs of iterations up to each check of `rule` (next_check,
-// stop(it, residual): ConvergenceRule), each run's last iteration reducing
-// the residual into *residual, and `between` (a program ending in e.sync())
-// after a check that does not stop. Each block's first thread applies the
-// rule to the reduced residual, the same in every block, so the grid leaves
-// the loop together. The rule's state lives in shared memory: in registers it
-// would be live across every phase of the iterations.
+// Attempts, each start(e, retry) (retry: false for the first) and runs of
+// iterations up to each check of `rule` (next_check, stop(it, residual),
+// diverged(): ConvergenceRule), each run's last iteration reducing the
+// residual into *residual, `between` (a program ending in e.sync()) after a
+// check that does not stop; an attempt that diverged starts again
+// (RetryRule). Each block's first thread applies the rules to the reduced
+// residual, the same in every block, so the grid takes every branch together.
+// The rules' state lives in shared memory: in registers it would be live
+// across every phase of the iterations. The start program is called from one
+// place, so the kernel holds its code once.
 template <class Start, class Program, class Between, class Rule, class T>
 __global__ void __launch_bounds__(persistent_block_size)
-    persistent_checked_kernel(Start start, Program program, Between between, Rule rule, const T* residual,
-                              CheckedRun<Rule>* record, T* history, T* partials, std::uint32_t* scan_totals) {
+    persistent_checked_kernel(Start start, Program program, Between between, Rule rule,
+                              RetryRule<T> retries, const T* residual, CheckedRun<Rule>* record, T* history,
+                              T* partials, std::uint32_t* scan_totals) {
   static_assert(std::is_trivially_default_constructible_v<CheckedRun<Rule>>);
   const GridExec<T> e{partials, scan_totals};
   __shared__ CheckedRun<Rule> run;
-  __shared__ bool stop;
-  if (threadIdx.x == 0) run = CheckedRun<Rule>{rule, 0};
-  start(e);
-  for (std::size_t first = 1;;) {
-    const std::size_t last = rule.next_check(first);
-    for (std::size_t k = first; k <= last; ++k) program(e, k - first + 1, k == last);
-    if (threadIdx.x == 0) {
-      const T r = *residual;  // rewritten only after the next run's first barrier
-      if (blockIdx.x == 0) history[run.checks] = r;
-      ++run.checks;
-      stop = run.rule.stop(last, r);
+  __shared__ bool stop, again;  // two flags: a thread may still read one while the first thread writes the other
+  const bool first_thread = threadIdx.x == 0, writer = first_thread && blockIdx.x == 0;
+  if (first_thread) run = CheckedRun<Rule>{rule, 0, 0, 0};
+  for (bool retry = false;; retry = true) {
+    start(e, retry);
+    for (std::size_t first = 1;;) {
+      const std::size_t last = rule.next_check(first);
+      for (std::size_t k = first; k <= last; ++k) program(e, k - first + 1, k == last);
+      if (first_thread) {
+        const T r = *residual;  // rewritten only after the next run's first barrier
+        if (writer) history[run.checks] = r;
+        ++run.checks;
+        stop = run.rule.stop(last, r);
+      }
+      __syncthreads();
+      if (stop) break;
+      between(e);
+      first = last + 1;
+    }
+    if (first_thread) {
+      run.total_iterations += run.rule.iterations;
+      again = run.rule.diverged() && run.retries < retries.max;
+      if (again) {
+        ++run.retries;
+        run.rule = rule, run.checks = 0;
+        if (writer) *retries.scale *= retries.factor;
+      }
     }
     __syncthreads();
-    if (stop) break;
-    between(e);
-    first = last + 1;
+    if (!again) break;
   }
-  if (blockIdx.x == 0 && threadIdx.x == 0) *record = run;
+  if (writer) *record = run;
 }
 #endif
 
@@ -204,28 +234,32 @@ class PersistentLoop {
     unavailable();
   }
 
-  // Queues `start` and the runs of `program` between the checks of `rule`
-  // (persistent_checked_kernel) as one cooperative kernel: the checks need no
-  // host round trip. Its verdict goes to *record and the residuals of its
-  // checks to history[0, record->checks): memory the host can read (pinned)
-  // once the stream is done, without a copy; history holds rule.max_checks().
+  // Queues a whole solve as one cooperative kernel (persistent_checked_kernel):
+  // attempts of `start` and of `program` between the checks of `rule`, and
+  // `retries`: neither the checks nor a retry needs the host.
+  // Its verdict goes to *record and the residuals of the last attempt's checks
+  // to history[0, record->checks): memory the host can read (pinned) once the
+  // stream is done, without a copy; history holds rule.max_checks().
   template <class Start, class Program, class Between, class Rule>
   void run_checked(const Start& start, const Program& program, const Between& between, const Rule& rule,
-                   const T* residual, CheckedRun<Rule>* record, T* history, std::size_t width, stream_t stream) {
+                   const RetryRule<T>& retries, const T* residual, CheckedRun<Rule>* record, T* history,
+                   std::size_t width, stream_t stream) {
 #if GPUSOLVE_HAS_NVCC
     if constexpr (std::is_same_v<Device, device::gpu>) {
       T* partials = nullptr;
       std::uint32_t* scan_totals = nullptr;
-      void* args[] = {const_cast<Start*>(&start), const_cast<Program*>(&program), const_cast<Between*>(&between),
-                      const_cast<Rule*>(&rule),   const_cast<T**>(&residual),     &record,
-                      &history,                   &partials,                      &scan_totals};
+      void* args[] = {const_cast<Start*>(&start),    const_cast<Program*>(&program),
+                      const_cast<Between*>(&between), const_cast<Rule*>(&rule),
+                      const_cast<RetryRule<T>*>(&retries), const_cast<T**>(&residual),
+                      &record,                        &history,
+                      &partials,                      &scan_totals};
       launch_cooperative(&persistent_checked_kernel<Start, Program, Between, Rule, T>, width, args, partials,
                          scan_totals, stream);
       return;
     }
 #endif
-    (void)start, (void)program, (void)between, (void)rule, (void)residual, (void)record, (void)history, (void)width,
-        (void)stream;
+    (void)start, (void)program, (void)between, (void)rule, (void)retries, (void)residual, (void)record, (void)history,
+        (void)width, (void)stream;
     unavailable();
   }
 

@@ -97,10 +97,14 @@ struct DirectSink {
 // K p = m^-1 p + (I^-1 (r x p)) x r  (= (m^-1 E - r× I^-1 r×) p), projected to
 // the model's rows and inverted into dinv. Fixed bodies contribute nothing
 // (zero inverse mass and inertia). Run once per step, after collision detection.
+// With `scale`, dinv is multiplied by *scale: the projected update's step is
+// omega dinv, so a retry at a smaller omega can scale the blocks instead of
+// rebuilding an iteration (JacobiSolver; by a power of two the same bits).
 template <class Model, class BV, class CV, class T>
 struct InverseBlocks {
   BV b;
   CV c;
+  const T* scale = nullptr;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     constexpr std::size_t R = Model::rows;
     const detail::Frame<T, Model, CV> f(c, i);
@@ -116,12 +120,13 @@ struct InverseBlocks {
         for (std::size_t row = 0; row < R; ++row) W[row][col] += math::dot(f.q[row], Kq);
       }
     }
+    const T s = scale ? *scale : T(1);
     if constexpr (R == 1) {
-      c.dinv(i, 0) = T(1) / W[0][0];
+      c.dinv(i, 0) = s / W[0][0];
     } else {
       const math::Matrix3x3<T> inv = math::inverse_spd(
           math::Matrix3x3<T>(W[0][0], W[0][1], W[0][2], W[1][0], W[1][1], W[1][2], W[2][0], W[2][1], W[2][2]));
-      for (std::size_t k = 0; k < 9; ++k) c.dinv(i, k) = inv[k];
+      for (std::size_t k = 0; k < 9; ++k) c.dinv(i, k) = s * inv[k];
     }
   }
 };

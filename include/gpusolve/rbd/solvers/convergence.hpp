@@ -90,6 +90,8 @@ struct ConvergenceRule {
     const std::size_t k = (it + check_every - 1) / check_every * check_every;
     return k < max_iterations ? k : max_iterations;
   }
+  // After stop() returned true: whether the attempt diverged.
+  GPUSOLVE_HD bool diverged() const { return status == SolverStatus::diverged; }
   // How many checks a solve that runs to max_iterations makes.
   GPUSOLVE_HD std::size_t max_checks() const { return (max_iterations - 1) / check_every + 1; }
 

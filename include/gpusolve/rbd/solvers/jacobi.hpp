@@ -127,13 +127,25 @@ struct RotatedJacobiIteration {
   }
 };
 
-// The start program of an attempt's first run: each contact's inverse block
-// and the velocity change of the impulses it starts from (`from_x`: warm
-// start, ApplyImpulses and their sums per body), then the momentum's start
+// Contact i's impulses set to zero: a retry starts cold.
+template <class CV>
+struct ZeroImpulses {
+  CV c;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    for (std::size_t r = 0; r < c.x.size_y(); ++r) c.x(i, r) = 0;
+  }
+};
+
+// The start program of an attempt: each contact's inverse block and the
+// velocity change of the impulses it starts from (`from_x`: warm start,
+// ApplyImpulses and their sums per body), then the momentum's start
 // (Momentum::start). In a solve's first attempt, first the accumulator's
 // preparation when the solver did not launch it (`preparing`), and the
-// velocities' copy for a retry (`saving`). Under a persistent kernel it costs
-// barriers instead of launches.
+// velocities' copy for a retry (`saving`). With `retry` (inside the persistent
+// kernel, which retries on its own), first what solve_relaxed does on the host
+// between attempts: the velocities the solve began with back, zero impulses;
+// then a cold start. One program for both, so that the kernel holds its code
+// once. Under a persistent kernel it costs barriers instead of launches.
 template <class Prepare, class Save, class Blocks, class Warm, class Apply, class MomentumStart>
 struct AttemptStart {
   Prepare prepare;
@@ -145,13 +157,21 @@ struct AttemptStart {
   bool preparing, saving, from_x;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
-  GPUSOLVE_HD void operator()(const E& e) const {
-    if (preparing) prepare(e);                // ends with e.sync()
-    if (saving) e.each(save.b.size(), save);  // nothing in this phase writes a velocity
+  GPUSOLVE_HD void operator()(const E& e, bool retry = false) const {
+    if (retry) {
+      Save back = save;
+      back.restore = true;
+      e.each(save.b.size(), back);
+      e.each(warm.c.size(), ZeroImpulses<decltype(warm.c)>{warm.c});
+      e.sync();
+    }
+    const bool first = !retry;
+    if (preparing && first) prepare(e);                // ends with e.sync()
+    if (saving && first) e.each(save.b.size(), save);  // nothing in this phase writes a velocity
     e.each(warm.c.size(), blocks);
-    if (from_x) e.each(warm.c.size(), warm);
+    if (from_x && first) e.each(warm.c.size(), warm);
     e.sync();
-    if (from_x) {
+    if (from_x && first) {
       apply(e);
       e.sync();
     }
@@ -206,9 +226,42 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   SolverStats<T> solve(BodyStore& bodies, ContactStore& contacts, const SolverSettings<T>& s,
                        stream_t stream = stream_t{}, bool from_x = false) {
     SolverStats<T> stats;
+    queue(bodies, contacts, s, stream, from_x, 0, false, stats);
+    return stats;
+  }
+
+  // solve() without a wait where the solve runs as one kernel (the persistent
+  // kernel: checks and retries on the device) and a divergence need not throw:
+  // then it returns true and `stats` holds only what the host knows (contacts,
+  // reduction passes) until verdict(slot, stats), called once the stream has
+  // passed the solve, fills in the rest. Two slots (0, 1) keep the verdicts of
+  // two queued solves apart. Otherwise it is solve(), and returns false.
+  bool solve_queued(BodyStore& bodies, ContactStore& contacts, const SolverSettings<T>& s, stream_t stream,
+                    bool from_x, std::size_t slot, SolverStats<T>& stats) {
+    stats = SolverStats<T>{};
+    return queue(bodies, contacts, s, stream, from_x, slot, !s.throw_on_divergence, stats);
+  }
+
+  // Fills in the verdict of the solve queued in `slot`: status, iterations,
+  // residual history, retries, omega. The stream must have passed it.
+  void verdict(std::size_t slot, SolverStats<T>& stats) const {
+    const Record r = records_.data()[slot];
+    const std::vector<T> checks(histories_[slot].data(), histories_[slot].data() + r.checks);
+    record_checks(r.rule, checks, stats);
+    stats.retries = r.retries, stats.total_iterations = r.total_iterations;
+    stats.omega = omegas_[slot];
+    for (std::size_t k = 0; k < r.retries; ++k) stats.omega *= retry_factors_[slot];  // as solve_relaxed
+  }
+
+ private:
+  // Queues the solve (solve(), solve_queued()). Returns true when it left its
+  // verdict in `slot` for verdict() without waiting (`deferred` and the
+  // persistent kernel); else `stats` is complete.
+  bool queue(BodyStore& bodies, ContactStore& contacts, const SolverSettings<T>& s, stream_t stream, bool from_x,
+             std::size_t slot, bool deferred, SolverStats<T>& stats) {
     const BV b = bodies.view();
     const CV c = contacts.view();
-    if (!this->prepare(c, s, stats)) return stats;
+    if (!this->prepare(c, s, stats)) return false;
     const std::size_t nc = c.size(), width = nc > b.size() ? nc : b.size();
     const bool persistent = nc <= s.persistent_max_contacts && persistent_.available();
     const detail::LaunchExec<Device, T> launched{stream, &algorithms_};
@@ -225,68 +278,87 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       algorithms_.reserve_reduce(width, terms, T(0), detail::MaxOp{}, residual_out);
       algorithms_.reserve_reduce(width, terms, T(0), detail::PlusOp{}, residual_out);
     }
+    if (scale_.size_x() == 0) scale_.resize(1);
 
     using Sink = decltype(acc_.sink());
     // Atomic without momentum runs an iteration as one phase (RotatedJacobiIteration).
     constexpr bool rotated = std::is_same_v<Strategy, Atomic> && std::is_same_v<MomentumTag, NoMomentum>;
     const VectorD2View<T> rhs{};  // JacobiContact keeps each error in registers: no store
     const auto residual = this->residual_.view();
-    auto attempt = [&](T omega, SolverStats<T>& st) {
-      const bool warm = from_x && st.retries == 0;
-      if (!warm) contacts.x.fill(T(0), stream);
-      const bool first_attempt = st.retries == 0;
-      const detail::AttemptStart<std::remove_const_t<decltype(prepared)>, detail::CopyVelocities<BV, T>,
-                                 InverseBlocks<Model, BV, CV, T>, ApplyImpulses<Model, BV, CV, Sink, T>,
-                                 decltype(acc_.program(b)), decltype(momentum_.start(b, c))>
-          start{prepared,
-                this->start_.saver(b),
-                this->inverse_blocks(b, c),
-                {b, c, acc_.sink()},
-                acc_.program(b),
-                momentum_.start(b, c),
-                persistent && first_attempt,
-                first_attempt && s.max_retries > 0,
-                warm};
-      // The iteration's contact functors, plain and measuring, for a sink and an iterate.
-      auto contact_pair = [&](const auto& sink, const auto& look) {
-        using Contact = JacobiContact<Model, BV, CV, std::decay_t<decltype(sink)>, T, std::decay_t<decltype(look)>>;
-        const Contact plain{{b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, sink, omega, false, residual}, look};
-        Contact measuring = plain;
-        measuring.resolve.measure = true;
-        return std::pair<Contact, Contact>{plain, measuring};
-      };
-      const auto iteration = [&] {
-        if constexpr (rotated) {
-          const auto r = acc_.rotation(b);
-          const auto [plain, measuring] = contact_pair(r.sink(1), r.iterate(1));
-          return detail::RotatedJacobiIteration<std::decay_t<decltype(plain)>, decltype(terms), T>{
-              plain, measuring, r, b.size(), terms, width, residual_out};
-        } else {
-          const auto look = momentum_.iterate();
-          const auto [plain, measuring] = contact_pair(acc_.sink(), look);
-          return detail::JacobiIteration<std::decay_t<decltype(plain)>, decltype(acc_.program(b, look)),
-                                         decltype(momentum_.program()), decltype(terms), T>{
-              plain, measuring, acc_.program(b, look), momentum_.program(), terms, width, residual_out};
-        }
+    // Every attempt iterates at the first attempt's omega; a retry's smaller
+    // omega scales the inverse blocks instead (InverseBlocks::scale), so that
+    // the persistent kernel retries with the iteration it holds.
+    const T omega = omega_of<JacobiSolver>(s);
+    // The start of the first attempt (in the kernel with the accumulator's
+    // preparation; the copy for a retry; the warm start) or of a retry (cold).
+    auto attempt_start = [&](bool first_attempt) {
+      return detail::AttemptStart<std::remove_const_t<decltype(prepared)>, detail::CopyVelocities<BV, T>,
+                                  InverseBlocks<Model, BV, CV, T>, ApplyImpulses<Model, BV, CV, Sink, T>,
+                                  decltype(acc_.program(b)), decltype(momentum_.start(b, c))>{
+          prepared,
+          this->start_.saver(b),
+          {b, c, scale_.data()},
+          {b, c, acc_.sink()},
+          acc_.program(b),
+          momentum_.start(b, c),
+          persistent && first_attempt,
+          first_attempt && s.max_retries > 0,
+          from_x && first_attempt};
+    };
+    // The iteration's contact functors, plain and measuring, for a sink and an iterate.
+    auto contact_pair = [&](const auto& sink, const auto& look) {
+      using Contact = JacobiContact<Model, BV, CV, std::decay_t<decltype(sink)>, T, std::decay_t<decltype(look)>>;
+      const Contact plain{{b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, sink, omega, false, residual}, look};
+      Contact measuring = plain;
+      measuring.resolve.measure = true;
+      return std::pair<Contact, Contact>{plain, measuring};
+    };
+    const auto iteration = [&] {
+      if constexpr (rotated) {
+        const auto r = acc_.rotation(b);
+        const auto [plain, measuring] = contact_pair(r.sink(1), r.iterate(1));
+        return detail::RotatedJacobiIteration<std::decay_t<decltype(plain)>, decltype(terms), T>{
+            plain, measuring, r, b.size(), terms, width, residual_out};
+      } else {
+        const auto look = momentum_.iterate();
+        const auto [plain, measuring] = contact_pair(acc_.sink(), look);
+        return detail::JacobiIteration<std::decay_t<decltype(plain)>, decltype(acc_.program(b, look)),
+                                       decltype(momentum_.program()), decltype(terms), T>{
+            plain, measuring, acc_.program(b, look), momentum_.program(), terms, width, residual_out};
+      }
+    }();
+    if (!from_x) contacts.x.fill(T(0), stream);
+
+    if (persistent) {  // checks and retries run in the kernel: the host waits for its verdict at most
+      if (s.max_retries > 0) this->start_.reserve(b);
+      scale_.fill(T(1), stream);
+      const auto between = [&] {
+        if constexpr (std::is_same_v<MomentumTag, NoMomentum>)
+          return detail::NoStart{};
+        else
+          return detail::BetweenRuns<decltype(momentum_.program())>{momentum_.program()};
       }();
-      if (persistent) {  // the checks run in the kernel too: the host waits once, for the verdict
-        const auto between = [&] {
-          if constexpr (std::is_same_v<MomentumTag, NoMomentum>)
-            return detail::NoStart{};
-          else
-            return detail::BetweenRuns<decltype(momentum_.program())>{momentum_.program()};
-        }();
-        const ConvergenceRule<T> rule(s);
-        if (history_.size() < rule.max_checks()) history_ = HostBuffer<T>(rule.max_checks());
-        if (record_.size() == 0) record_ = HostBuffer<Record>(1);
-        persistent_.run_checked(start, iteration, between, rule, residual_out, record_.data(), history_.data(), width,
-                                stream);
+      const ConvergenceRule<T> rule(s);
+      if (records_.size() == 0) records_ = HostBuffer<Record>(2);
+      if (histories_[slot].size() < rule.max_checks()) histories_[slot] = HostBuffer<T>(rule.max_checks());
+      omegas_[slot] = omega, retry_factors_[slot] = s.retry_omega_factor;
+      persistent_.run_checked(attempt_start(true), iteration, between, rule,
+                              detail::RetryRule<T>{s.retry_omega_factor, s.max_retries, scale_.data()}, residual_out,
+                              records_.data() + slot, histories_[slot].data(), width, stream);
+      if (!deferred) {
         done_.mark(0, stream);
         done_.wait(0);
-        const Record r = *record_.data();
-        record_checks(r.rule, std::vector<T>(history_.data(), history_.data() + r.checks), st);
-        return;
+        verdict(slot, stats);
+        report_divergence(s, stats);
       }
+      return deferred;
+    }
+
+    auto attempt = [&](T attempt_omega, SolverStats<T>& st) {
+      const bool first_attempt = st.retries == 0;
+      if (!first_attempt) contacts.x.fill(T(0), stream);
+      scale_.fill(attempt_omega / omega, stream);
+      const auto start = attempt_start(first_attempt);
       // Iterations `first` ... `last`, the last one measuring the residual.
       auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
         const detail::LaunchExec<Device, T> e{q, &algorithms_};
@@ -305,11 +377,10 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
         first = last + 1;
       }
     };
-    solve_relaxed(s, omega_of<JacobiSolver>(s), b, this->start_, stats, attempt, stream, true);
-    return stats;
+    solve_relaxed(s, omega, b, this->start_, stats, attempt, stream, true);
+    return false;
   }
 
- private:
   Accumulator<Strategy, Device, T> acc_;
   Momentum<MomentumTag, Device, T> momentum_;
   detail::DeviceAlgorithms<Device> algorithms_;  // the programs' reductions
@@ -321,8 +392,10 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   using HostBuffer = memory::Buffer<E, std::conditional_t<std::is_same_v<Device, device::gpu>, memory::CUDAHostAllocator,
                                                           memory::StandardAllocator>>;
   using Record = detail::CheckedRun<ConvergenceRule<T>>;
-  HostBuffer<Record> record_;
-  HostBuffer<T> history_;  // the residual of each check of the last attempt
+  HostBuffer<Record> records_;  // per slot (solve_queued)
+  HostBuffer<T> histories_[2];  // per slot: the residual of each check of the last attempt
+  T omegas_[2] = {}, retry_factors_[2] = {};
+  VectorD1<T, device_is<Device>> scale_;  // the inverse blocks' factor: retry_omega_factor^retries
   detail::StreamMarks<Device, 1> done_;
 };
 

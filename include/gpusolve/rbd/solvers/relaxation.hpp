@@ -67,6 +67,13 @@ class VelocitySnapshot {
   VectorD2<T, device_is<Device>> v_, w_;
 };
 
+// Throws DivergenceError when the solve's last attempt diverged and the settings ask for it.
+template <class T>
+void report_divergence(const SolverSettings<T>& s, const SolverStats<T>& stats) {
+  if (stats.status == SolverStatus::diverged && s.throw_on_divergence)
+    throw DivergenceError(stats.iterations, double(stats.residual()), double(stats.omega), stats.retries);
+}
+
 // Runs attempt(omega, stats) from `omega`, one solve from the bodies' current velocities
 // (its starting impulses are its own choice; stats.retries says which attempt
 // it is) that sets stats.status, iterations and the residual history. While an attempt diverges and s.max_retries allows, restores the
@@ -97,8 +104,7 @@ void solve_relaxed(const SolverSettings<T>& s, T omega, const BV& b, VelocitySna
     stats.omega *= s.retry_omega_factor;
     ++stats.retries;
   }
-  if (stats.status == SolverStatus::diverged && s.throw_on_divergence)
-    throw DivergenceError(stats.iterations, double(stats.residual()), double(stats.omega), stats.retries);
+  report_divergence(s, stats);
 }
 
 }  // namespace gpusolve::rbd

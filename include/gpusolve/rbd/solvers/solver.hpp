@@ -2,6 +2,7 @@
 // the method tags that name one for World.
 #pragma once
 
+#include <cstddef>
 #include <type_traits>
 #include <utility>
 
@@ -41,6 +42,13 @@ namespace gpusolve::rbd {
 //      static constexpr bool integrates = true;
 //    then solve() receives the velocities before the step's external forces and
 //    applies them, solves and moves the bodies for the whole step itself.
+//  - a solver that can leave its verdict for later (JacobiSolver under its
+//    persistent kernel) also offers
+//      bool solve_queued(bodies, contacts, settings, stream, from_x, slot, stats);
+//      void verdict(slot, stats) const;
+//    solve_queued() returns true when it did not wait: stats then holds the
+//    contact count until verdict() fills in the rest, once the stream has
+//    passed the solve (slot 0 or 1: two solves in flight).
 // Adding a method is one header that defines its tag and solver, and its tests.
 
 template <class Method, class Device, class T, class Model>
@@ -65,6 +73,19 @@ template <class S, class = void>
 struct integrates : std::false_type {};
 template <class S>
 struct integrates<S, std::void_t<decltype(S::integrates)>> : std::bool_constant<S::integrates> {};
+
+// Whether solver S offers solve_queued() and verdict() (see above).
+template <class S, class Device, class T, class Model, class = void>
+struct queues_verdict : std::false_type {};
+template <class S, class Device, class T, class Model>
+struct queues_verdict<S, Device, T, Model,
+                      std::void_t<decltype(std::declval<S&>().solve_queued(
+                                      std::declval<Bodies<Device, T>&>(), std::declval<Contacts<Device, T, Model>&>(),
+                                      std::declval<const SolverSettings<T>&>(), stream_t{}, bool{}, std::size_t{},
+                                      std::declval<SolverStats<T>&>())),
+                                  decltype(std::declval<const S&>().verdict(std::size_t{},
+                                                                            std::declval<SolverStats<T>&>()))>>
+    : std::true_type {};
 
 // The relaxation a solve uses: the settings' omega, or the method's default when it is 0.
 template <class S, class T>
