@@ -204,9 +204,10 @@ struct BetweenRuns {
 // SolverSettings::max_retries); a retry starts from zero impulses and the
 // velocities the solve began with (before J^T x), i.e. as a cold solve: the
 // starting guess may be what made the first attempt diverge, and the cold start
-// needs no copy of it. Under the persistent kernel an attempt's residual
-// checks run on the device (ConvergenceRule), and the host reads the verdict
-// once per attempt. Scratch storage is kept between calls. Strategy:
+// needs no copy of it. Under the persistent kernel the residual checks
+// (ConvergenceRule) and the retries run on the device, and the host reads the
+// verdict once per solve, or later (solve_queued). Scratch storage is kept
+// between calls. Strategy:
 // UpdateCache, Atomic or Gather (accumulation.hpp). MomentumTag: NoMomentum
 // (projected Jacobi) or Nesterov (APGD, momentum.hpp).
 template <class Device, class T, class Model, class Strategy = Gather, class MomentumTag = NoMomentum>
