@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "catch_compat.hpp"
 #include "gpusolve/rbd/solvers/pgs.hpp"
@@ -274,6 +275,35 @@ TEST_CASE("adaptive under-relaxation: a diverging solve restarts at a smaller om
   CHECK(g.retries == s.max_retries);
   CHECK(g.omega == s.omega * std::pow(s.retry_omega_factor, double(s.max_retries)));
   CHECK(g.total_iterations == (s.max_retries + 1) * s.check_every);
+}
+
+TEST_CASE("a retry's scaled inverse blocks are the blocks times the factor, exactly by a power of two",
+          "[rbd_solver]") {
+  // JacobiSolver retries at omega * factor by scaling dinv (InverseBlocks::scale):
+  // the same bits as a smaller omega when the factor is a power of two.
+  auto set = pile<double>(3, 3);
+  Store st(set);
+  st.syncDeviceFull();
+  Contacts<device::cpu, double, ConeFriction> c;
+  prepare_solve(st.device(), c, tight());
+  REQUIRE(c.size() > 20);
+  const auto b = st.device().view();
+  const auto cv = c.view();
+  auto blocks = [&](const double* scale) {
+    launch(device::cpu{}, c.size(), InverseBlocks<ConeFriction, decltype(b), decltype(cv), double>{b, cv, scale});
+    std::vector<double> d;
+    for (std::size_t i = 0; i < c.size(); ++i)
+      for (std::size_t k = 0; k < 9; ++k) d.push_back(c.dinv(i, k));
+    return d;
+  };
+  const auto plain = blocks(nullptr);
+  const double one = 1, quarter = 0.25, third = 1.0 / 3;
+  CHECK(blocks(&one) == plain);
+  const auto scaled = blocks(&quarter), other = blocks(&third);
+  for (std::size_t k = 0; k < plain.size(); ++k) {
+    CHECK(scaled[k] == plain[k] / 4);
+    CHECK(std::fabs(other[k] - plain[k] / 3) <= 1e-15 * std::fabs(plain[k]));
+  }
 }
 
 TEST_CASE("the residual check: largest contact residual, +inf for a non-finite velocity", "[rbd_solver]") {
