@@ -3,7 +3,8 @@
 // penetration and the LCP residual it bought, and whether each step converged.
 //
 // Run: gpusolve_bench_atlas --scene pile|column|hopper [--n 10000,100000] [--ratios 1,100,1000]
-//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,tol0.02,check10] [--margins 0.1]
+//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,tol0.02,check10]
+//        [--margins 0.1]
 //        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, PILE.md), N spheres dropped into

@@ -287,7 +287,8 @@ class PersistentLoop {
     if (per_sm == 0)
       throw UnsupportedError("gpusolve: the persistent solver kernel does not fit on one multiprocessor");
     const std::size_t wanted = (width + persistent_block_size - 1) / persistent_block_size;
-    const std::size_t resident = static_cast<std::size_t>(per_sm) * static_cast<std::size_t>(gpusolve::detail::sm_count());
+    const std::size_t resident =
+        static_cast<std::size_t>(per_sm) * static_cast<std::size_t>(gpusolve::detail::sm_count());
     const std::size_t blocks = wanted == 0 ? 1 : (wanted < resident ? wanted : resident);
     blocks_ = blocks;
     if (partials_.size_x() < blocks) partials_.resize(blocks);

@@ -149,7 +149,8 @@ class ConvergenceMonitor {
 template <class T>
 void record_checks(const ConvergenceRule<T>& verdict, std::vector<T> residuals, SolverStats<T>& stats) {
   stats.checked_at.clear();
-  for (std::size_t k = 0, it = 0; k < residuals.size(); ++k) stats.checked_at.push_back(it = verdict.next_check(it + 1));
+  for (std::size_t k = 0, it = 0; k < residuals.size(); ++k)
+    stats.checked_at.push_back(it = verdict.next_check(it + 1));
   stats.residuals = std::move(residuals);
   stats.iterations = verdict.iterations;
   stats.status = verdict.status;

@@ -390,8 +390,8 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   detail::PersistentLoop<Device, T> persistent_;  // SolverSettings::persistent_max_contacts
   // What the persistent kernel leaves for the host (pinned on the GPU).
   template <class E>
-  using HostBuffer = memory::Buffer<E, std::conditional_t<std::is_same_v<Device, device::gpu>, memory::CUDAHostAllocator,
-                                                          memory::StandardAllocator>>;
+  using HostBuffer = memory::Buffer<
+      E, std::conditional_t<std::is_same_v<Device, device::gpu>, memory::CUDAHostAllocator, memory::StandardAllocator>>;
   using Record = detail::CheckedRun<ConvergenceRule<T>>;
   HostBuffer<Record> records_;  // per slot (solve_queued)
   HostBuffer<T> histories_[2];  // per slot: the residual of each check of the last attempt
