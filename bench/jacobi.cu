@@ -1,7 +1,7 @@
 // Time per projected-Jacobi iteration on the GPU, per accumulation strategy and contact model.
 //
 // Run: gpusolve_bench_jacobi [--contacts 26000,1000000] [--repeats 20] [--iters N] [--warmup 2] [--omega 0.3]
-//                             [--persistent on|off] [--csv FILE]
+//                             [--persistent on|grid|off] [--csv FILE]
 //
 // For each target contact count a settled-looking pile (bench/pile.hpp) is built
 // and collision detection runs once. Then, per model and strategy, each repeat
@@ -17,12 +17,15 @@
 //                 captured N times into one CUDA graph once and replayed (SolverSettings::graphs makes solve()
 //                 capture and update one per solve, which costs more than it saves).
 // --persistent: on (the default) makes solve() run the iterations between
-// checks as one cooperative kernel at any size, off launches them
+// checks as one persistent kernel at any size (one thread-block cluster where
+// its grid fits in one: SolverSettings::persistent_clusters), grid the same
+// launched cooperatively at every size, off launches them
 // (SolverSettings::persistent_max_contacts at its largest or 0).
 // The tolerance is the smallest positive float and divergence detection is
 // off, so every solve runs its full count; the program checks that it did.
 // barrier: the floor under the persistent kernel's iteration, an iteration
-// program of nothing but one grid-wide barrier on the grid the contacts get
+// program of nothing but one barrier (the cluster's or the grid's, as the
+// solve's) on the grid the contacts get
 // (per barrier = (time of 10 + N barriers - time of 10) / N, median of repeats).
 // omega defaults to 0.3: on this close-packed pile (12 contacts per sphere) the
 // pyramid model diverges from omega 0.5 up (bench/accuracy.cu shows it), and a
@@ -57,7 +60,7 @@ struct Options {
   int repeats = 20, warmup = 2;
   std::size_t iters = 0;  // 0: 100 up to 200k contacts, 40 beyond
   double omega = 0.3;
-  bool persistent = true;
+  bool persistent = true, clusters = true;
   std::string csv;
 };
 
@@ -124,6 +127,7 @@ Row bench_strategy(rbd::Bodies<Dev, T>& bodies, rbd::Contacts<Dev, T, Model>& co
     s.divergence_checks = 0;
     s.max_retries = 0;  // time the iterations, not restarts at a lower omega
     s.persistent_max_contacts = opt.persistent ? ~std::size_t(0) : 0;
+    s.persistent_clusters = opt.clusters;
     s.max_iterations = n;
     s.check_every = check_every;
     restore();
@@ -216,9 +220,11 @@ struct BarrierOnly {
   }
 };
 
-// us per grid barrier of the persistent kernel on the grid `width` indices get.
-Spread barrier_us(std::size_t width, std::size_t iters, const Options& opt, cudaStream_t stream, std::size_t& blocks) {
+// us per barrier of the persistent kernel on the grid `width` indices get.
+Spread barrier_us(std::size_t width, std::size_t iters, const Options& opt, cudaStream_t stream, std::size_t& blocks,
+                  bool& clustered) {
   rbd::detail::PersistentLoop<Dev, T> loop;
+  loop.set_clusters(opt.clusters);
   EventTimer timer(stream);
   const auto timed = [&](std::size_t n) {
     timer.start();
@@ -232,6 +238,7 @@ Spread barrier_us(std::size_t width, std::size_t iters, const Options& opt, cuda
     us.push_back(1e3 * (b - a) / double(iters));
   }
   blocks = loop.blocks();
+  clustered = loop.clustered();
   return spread(us);
 }
 
@@ -269,9 +276,11 @@ void bench_model(rbd::BodySet<T>& set, const Options& opt, std::size_t target, s
               "residual", "|dv|");
   if (opt.persistent) {
     std::size_t blocks = 0;
-    const Spread b = barrier_us(nc, iters, opt, stream, blocks);
-    std::printf("%-12s %-12s %3s %9.1f [%8.1f %8.1f]  (one grid barrier of the persistent kernel, %zu blocks of %u)\n",
-                name(Model{}), "barrier", "-", b.median, b.p10, b.p90, blocks, rbd::detail::persistent_block_size);
+    bool clustered = false;
+    const Spread b = barrier_us(nc, iters, opt, stream, blocks, clustered);
+    std::printf("%-12s %-12s %3s %9.1f [%8.1f %8.1f]  (one %s barrier of the persistent kernel, %zu blocks of %u)\n",
+                name(Model{}), "barrier", "-", b.median, b.p10, b.p90, clustered ? "cluster" : "grid", blocks,
+                rbd::detail::persistent_block_size);
   }
   std::vector<Row> rows;
   rows.push_back(bench_strategy<Model, UpdateCache>(bodies, contacts, census, v0, w0, iters, opt, stream));
@@ -286,7 +295,7 @@ void bench_model(rbd::BodySet<T>& set, const Options& opt, std::size_t target, s
                  "\"%s\",%zu,%zu,%zu,%s,%s,%s,%zu,%zu,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.0f,%.6g,"
                  "%.3g\n",
                  gpu.c_str(), nc, target, set.size() - 1, r.model.c_str(), r.strategy.c_str(),
-                 opt.persistent ? "on" : "off", r.launches, iters,
+                 opt.persistent ? (opt.clusters ? "on" : "grid") : "off", r.launches, iters,
                  opt.repeats, r.iter_us.median, r.iter_us.p10, r.iter_us.p90, r.iter_us.min, r.iter_us.max,
                  r.graph_us.median, r.graph_us.p10, r.graph_us.p90, r.check_us.median, r.setup_us.median,
                  nc / (r.iter_us.median * 1e-6), r.bytes, r.residual, r.graph_diff);
@@ -308,13 +317,13 @@ Options parse(int argc, char** argv) {
       o.omega = std::atof(option_value(argc, argv, i).c_str());
     else if (a == "--persistent") {
       const std::string v = option_value(argc, argv, i);
-      if (v != "on" && v != "off") throw InvalidArgumentError("bench: --persistent takes on or off");
-      o.persistent = v == "on";
+      if (v != "on" && v != "grid" && v != "off") throw InvalidArgumentError("bench: --persistent takes on, grid or off");
+      o.persistent = v != "off", o.clusters = v == "on";
     } else if (a == "--csv")
       o.csv = option_value(argc, argv, i);
     else
       usage_exit(argv[0],
-                 "[--contacts N,N...] [--repeats R] [--warmup W] [--iters N] [--omega W] [--persistent on|off] "
+                 "[--contacts N,N...] [--repeats R] [--warmup W] [--iters N] [--omega W] [--persistent on|grid|off] "
                  "[--csv FILE]",
                  a);
   }
@@ -327,8 +336,9 @@ int main(int argc, char** argv) {
     const Options opt = parse(argc, argv);
     const std::string gpu = print_banner("gpusolve bench: projected Jacobi iteration (float)");
     std::printf(
-        "JacobiSolver::solve runs the iterations between two checks as one cooperative kernel (persistent on)\n"
-        "or launches each iteration's kernels (off); the host waits for the GPU only at a check.\n"
+        "JacobiSolver::solve runs the iterations between two checks as one persistent kernel (persistent on: one\n"
+        "thread-block cluster up to 16 blocks, grid: cooperative at any size) or launches each iteration's kernels\n"
+        "(off); the host waits for the GPU only at a check.\n"
         "us/iter: solve() with one check; graph: the launches' kernels from a graph captured once\n"
         "and replayed (no capture cost); us/check: one residual check with its host sync; L/i: launches/iteration;\n"
         "GB/s: modelled bytes (see source) / time; |dv|: max velocity difference graph vs solve() (0: same work).\n");
@@ -338,7 +348,7 @@ int main(int argc, char** argv) {
         "us_per_iter_p10,us_per_iter_p90,us_per_iter_min,us_per_iter_max,graph_us_per_iter_median,"
         "graph_us_per_iter_p10,graph_us_per_iter_p90,us_per_check_median,setup_us_median,contacts_per_s,"
         "modelled_bytes_per_iter,final_residual,graph_vs_solve_max_dv");
-    std::printf("solve(): persistent %s\n", opt.persistent ? "on" : "off");
+    std::printf("solve(): persistent %s\n", opt.persistent ? (opt.clusters ? "on" : "grid") : "off");
     cudaStream_t stream;
     GPUSOLVE_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
     for (std::size_t target : opt.contacts) {

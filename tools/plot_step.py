@@ -51,8 +51,8 @@ def main(argv):
 
     modes = sorted({r["mode"] for r in rows})
     colour = {m: f"C{k}" for k, m in enumerate(modes)}  # a colour per mode, a line style per loop
-    dashes = {"auto": "-", "auto-nograph": "--", "persistent": "-", "launches": ":", "graphs": "-.", "graphs on": "-.",
-              "graphs off": ":"}
+    dashes = {"auto": "-", "auto-grid": (0, (3, 1, 1, 1)), "auto-nograph": "--", "persistent": "-", "launches": ":",
+              "graphs": "-.", "graphs on": "-.", "graphs off": ":"}
 
     def draw(ax, rows_, value, prefix=""):
         for name, pts in sorted(series(rows_, label, value).items()):

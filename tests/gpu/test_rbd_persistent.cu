@@ -2,7 +2,10 @@
 // iterations launched one kernel at a time: the same functors in the same
 // order, so Jacobi's two deterministic strategies agree bit for bit; APGD's
 // momentum sums its restart test in another order, so it agrees to rounding.
+// These scenes' kernels fit in one thread-block cluster; at the end, the
+// cluster against the cooperative grid.
 #include <cstddef>
+#include <cstdint>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -178,5 +181,68 @@ TEST_CASE("GPU World reads the persistent solver's verdict late, as the launches
     }
     if (omega > 1.f) CHECK(retried > 0);
     CHECK(at_once.back().contacts > 0);
+  }
+}
+
+namespace {
+// Iteration k of a program whose second phase reads what other blocks wrote
+// in its first: a[i] = k n + i, then b[i] += a[n - 1 - i]. A barrier that
+// did not order global memory between blocks would leave other sums.
+struct Mirror {
+  std::uint32_t *a, *b;
+  std::size_t n;
+  template <class E>
+  __device__ void operator()(const E& e, std::size_t k, bool) const {
+    e.each(n, [&](std::size_t i) { a[i] = std::uint32_t(k * n + i); });
+    e.sync();
+    e.each(n, [&](std::size_t i) { b[i] += a[n - 1 - i]; });
+    e.sync();
+  }
+};
+}  // namespace
+
+// A persistent grid of at most 16 blocks runs as one thread-block cluster on
+// sm_90 and later (SolverSettings::persistent_clusters): its phases are
+// separated by the cluster's barrier, a larger grid's by the grid's.
+TEST_CASE("GPU persistent kernel: one cluster or the cooperative grid, ordered by its barrier",
+          "[rbd_persistent][gpu]") {
+  int dev = 0, clusters = 0;
+  GPUSOLVE_CUDA_CHECK(cudaGetDevice(&dev));
+  GPUSOLVE_CUDA_CHECK(cudaDeviceGetAttribute(&clusters, cudaDevAttrClusterLaunch, dev));
+  if (!clusters) WARN("this GPU has no thread-block clusters: every run below is a cooperative grid");
+  const std::size_t count = 50;
+  for (const bool on : {true, false})
+    for (const std::size_t n : {std::size_t(1000), std::size_t(16 * 256), std::size_t(50000)}) {
+      INFO("clusters " << on << ", " << n << " indices");
+      VectorD1<std::uint32_t, device_is<device::gpu>> a(n), b(n);
+      b.fill(0u);
+      rbd::detail::PersistentLoop<device::gpu, float> loop;
+      loop.set_clusters(on);
+      loop.run(rbd::detail::NoStart{}, Mirror{a.data(), b.data(), n}, count, n, stream_t{});
+      GPUSOLVE_CUDA_CHECK(cudaDeviceSynchronize());
+      CHECK(loop.blocks() <= (n + 255) / 256);
+      CHECK((!loop.clustered() || loop.blocks() <= 16));
+      if (clusters && n == 1000) CHECK(loop.clustered() == on);
+      if (n == 50000) CHECK_FALSE(loop.clustered());
+      const VectorD1<std::uint32_t> host(b);
+      std::size_t wrong = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        wrong += host(i) != std::uint32_t(n * count * (count + 1) / 2 + count * (n - 1 - i));
+      CHECK(wrong == 0);
+    }
+}
+
+// The cluster runs the cooperative grid's blocks and splits every sum the
+// same way, so both give the same bits, with APGD's momentum too.
+TEST_CASE("GPU persistent kernel as one cluster equals the cooperative grid bit for bit", "[rbd_persistent][gpu]") {
+  const auto grid = [](SolverSettings<float>& s) { s.persistent_clusters = false; };
+  for (std::size_t every : {std::size_t(120), std::size_t(7)}) {
+    INFO("check_every " << every);
+    CHECK(solve_once<Gather, NoMomentum>(true, every).first == solve_once<Gather, NoMomentum>(true, every, grid).first);
+    const auto apgd = solve_once<Gather, Nesterov>(true, every);
+    const auto apgd_grid = solve_once<Gather, Nesterov>(true, every, grid);
+    CHECK(apgd.first == apgd_grid.first);
+    CHECK(apgd.second.residuals == apgd_grid.second.residuals);
+    CHECK(apgd.second.iterations == apgd_grid.second.iterations);
   }
 }

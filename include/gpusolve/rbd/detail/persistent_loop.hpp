@@ -17,6 +17,9 @@
 // is the same functor either way. run() queues a fixed number of iterations;
 // run_checked() a whole solve, its residual checks, stopping rule and retries
 // applied inside the kernel, so the host needs to wait for nothing but its verdict.
+// A grid small enough for one thread-block cluster (sm_90 and later, at most
+// 16 blocks) is launched as that cluster, and its phases are separated by the
+// cluster's hardware barrier instead of the grid's barrier through global memory.
 #pragma once
 
 #include <cstddef>
@@ -40,12 +43,33 @@ namespace gpusolve::rbd::detail {
 
 inline constexpr unsigned persistent_block_size = 256;
 
+// The largest thread-block cluster a persistent kernel is launched as (the
+// non-portable limit of sm_90; the portable one is 8).
+inline constexpr unsigned persistent_max_cluster = 16;
+
 #if GPUSOLVE_HAS_NVCC
-// The executor inside the cooperative kernel. Its sum is deterministic: each
+// The barriers between a persistent kernel's phases: the whole grid's through
+// global memory (a cooperative launch), or, where the grid is one thread-block
+// cluster, the cluster's in hardware. Both order the global memory accesses
+// before them before those after them, for every thread of the grid.
+struct GridBarrier {
+  __device__ static void sync() { cooperative_groups::this_grid().sync(); }
+};
+struct ClusterBarrier {
+  __device__ static void sync() {
+#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ < 900
+    __trap();  // never launched: the host launches clusters only for sm_90 binaries
+#else
+    cooperative_groups::this_cluster().sync();
+#endif
+  }
+};
+
+// The executor inside the persistent kernel. Its sum is deterministic: each
 // block reduces its strided share, block 0 adds the blocks' partials in order.
 // Its scan: each block scans a contiguous share, then adds the totals of the
 // blocks before it.
-template <class T>
+template <class T, class Barrier>
 struct GridExec {
   T* partials;                 // one per block
   std::uint32_t* scan_totals;  // one per block
@@ -55,7 +79,7 @@ struct GridExec {
     const std::size_t stride = static_cast<std::size_t>(blockDim.x) * gridDim.x;
     for (std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride) f(i);
   }
-  __device__ void sync() const { cooperative_groups::this_grid().sync(); }
+  __device__ void sync() const { Barrier::sync(); }
   template <class F, class Op>
   __device__ void reduce(std::size_t n, const F& f, T init, Op op, T* out) const {
     using Reduce = cub::BlockReduce<T, persistent_block_size>;
@@ -104,11 +128,11 @@ struct GridExec {
   }
 };
 
-template <class Start, class Program, class T>
+template <class Barrier, class Start, class Program, class T>
 __global__ void __launch_bounds__(persistent_block_size)
     persistent_iterations_kernel(Start start, Program program, std::size_t count, T* partials,
                                  std::uint32_t* scan_totals) {
-  const GridExec<T> e{partials, scan_totals};
+  const GridExec<T, Barrier> e{partials, scan_totals};
   start(e);
   for (std::size_t k = 1; k <= count; ++k) program(e, k, k == count);
 }
@@ -147,13 +171,13 @@ struct RetryRule {
 // The rules' state lives in shared memory: in registers it would be live
 // across every phase of the iterations. The start program is called from one
 // place, so the kernel holds its code once.
-template <class Start, class Program, class Between, class Rule, class T>
+template <class Barrier, class Start, class Program, class Between, class Rule, class T>
 __global__ void __launch_bounds__(persistent_block_size)
     persistent_checked_kernel(Start start, Program program, Between between, Rule rule,
                               RetryRule<T> retries, const T* residual, CheckedRun<Rule>* record, T* history,
                               T* partials, std::uint32_t* scan_totals) {
   static_assert(std::is_trivially_default_constructible_v<CheckedRun<Rule>>);
-  const GridExec<T> e{partials, scan_totals};
+  const GridExec<T, Barrier> e{partials, scan_totals};
   __shared__ CheckedRun<Rule> run;
   __shared__ bool stop, again;  // two flags: a thread may still read one while the first thread writes the other
   const bool first_thread = threadIdx.x == 0, writer = first_thread && blockIdx.x == 0;
@@ -198,8 +222,9 @@ struct NoStart {
 
 // run(start, program, count, width, stream) queues `start` and `count`
 // iterations of `program` (the last one called with last = true) as one
-// cooperative kernel of at most one block per `persistent_block_size` indices
-// of `width` (the longest phase) and no more blocks than the GPU holds at once.
+// kernel of at most one block per `persistent_block_size` indices of `width`
+// (the longest phase) and no more blocks than the GPU holds at once: one
+// thread-block cluster where they fit in one, else a cooperative launch.
 // GPU only: available() says whether it can run here (nvcc and a device with
 // cooperative launch).
 template <class Device, class T>
@@ -226,7 +251,9 @@ class PersistentLoop {
       T* partials = nullptr;
       std::uint32_t* scan_totals = nullptr;
       void* args[] = {const_cast<Start*>(&start), const_cast<Program*>(&program), &count, &partials, &scan_totals};
-      launch_cooperative(&persistent_iterations_kernel<Start, Program, T>, width, args, partials, scan_totals, stream);
+      launch_persistent(&persistent_iterations_kernel<GridBarrier, Start, Program, T>,
+                        &persistent_iterations_kernel<ClusterBarrier, Start, Program, T>, width, args, partials,
+                        scan_totals, stream);
       return;
     }
 #endif
@@ -253,8 +280,9 @@ class PersistentLoop {
                       const_cast<RetryRule<T>*>(&retries), const_cast<T**>(&residual),
                       &record,                        &history,
                       &partials,                      &scan_totals};
-      launch_cooperative(&persistent_checked_kernel<Start, Program, Between, Rule, T>, width, args, partials,
-                         scan_totals, stream);
+      launch_persistent(&persistent_checked_kernel<GridBarrier, Start, Program, Between, Rule, T>,
+                        &persistent_checked_kernel<ClusterBarrier, Start, Program, Between, Rule, T>, width, args,
+                        partials, scan_totals, stream);
       return;
     }
 #endif
@@ -263,8 +291,13 @@ class PersistentLoop {
     unavailable();
   }
 
-  // The grid of the last run, in blocks of persistent_block_size threads.
+  // Whether a grid that fits in one thread-block cluster is launched as one
+  // (ClusterBarrier; on by default) or cooperatively like a larger grid.
+  void set_clusters(bool on) { clusters_ = on; }
+  // The grid of the last run, in blocks of persistent_block_size threads, and
+  // whether it ran as one cluster.
   std::size_t blocks() const { return blocks_; }
+  bool clustered() const { return clustered_; }
 
  private:
   [[noreturn]] static void unavailable() {
@@ -272,18 +305,21 @@ class PersistentLoop {
   }
 
 #if GPUSOLVE_HAS_NVCC
-  // Launches `kernel` cooperatively on at most one block per
+  // Launches the persistent kernel on at most one block per
   // persistent_block_size indices of `width` and no more blocks than the GPU
-  // holds at once; its arguments `args` end with the per-block scratch, whose
+  // holds at once: as one thread-block cluster (`clustered`, ClusterBarrier)
+  // where that many blocks fit in one, else cooperatively (`grid`,
+  // GridBarrier). Its arguments `args` end with the per-block scratch, whose
   // pointers `partials` and `scan_totals` are set here.
-  template <class Kernel>
-  void launch_cooperative(Kernel* kernel, std::size_t width, void** args, T*& partials, std::uint32_t*& scan_totals,
-                          stream_t stream) {
-    static const int per_sm = [kernel] {
+  template <class GridKernel, class ClusterKernel>
+  void launch_persistent(GridKernel* grid, ClusterKernel* clustered, std::size_t width, void** args, T*& partials,
+                         std::uint32_t*& scan_totals, stream_t stream) {
+    static const int per_sm = [grid] {
       int blocks = 0;
-      GPUSOLVE_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks, kernel, persistent_block_size, 0));
+      GPUSOLVE_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks, grid, persistent_block_size, 0));
       return blocks;
     }();
+    static const std::size_t cluster_max = largest_cluster(clustered);
     if (per_sm == 0)
       throw UnsupportedError("gpusolve: the persistent solver kernel does not fit on one multiprocessor");
     const std::size_t wanted = (width + persistent_block_size - 1) / persistent_block_size;
@@ -291,16 +327,47 @@ class PersistentLoop {
         static_cast<std::size_t>(per_sm) * static_cast<std::size_t>(gpusolve::detail::sm_count());
     const std::size_t blocks = wanted == 0 ? 1 : (wanted < resident ? wanted : resident);
     blocks_ = blocks;
+    clustered_ = clusters_ && blocks <= cluster_max;
     if (partials_.size_x() < blocks) partials_.resize(blocks);
     if (scan_totals_.size_x() < blocks) scan_totals_.resize(blocks);
     partials = partials_.data();
     scan_totals = scan_totals_.data();
-    GPUSOLVE_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(kernel), dim3(unsigned(blocks)),
-                                                    dim3(persistent_block_size), args, 0, stream));
+    if (!clustered_) {
+      GPUSOLVE_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(grid), dim3(unsigned(blocks)),
+                                                      dim3(persistent_block_size), args, 0, stream));
+      return;
+    }
+    cudaLaunchAttribute cluster{};
+    cluster.id = cudaLaunchAttributeClusterDimension;
+    cluster.val.clusterDim.x = unsigned(blocks), cluster.val.clusterDim.y = 1, cluster.val.clusterDim.z = 1;
+    cudaLaunchConfig_t config{};
+    config.gridDim = dim3(unsigned(blocks)), config.blockDim = dim3(persistent_block_size), config.stream = stream;
+    config.attrs = &cluster, config.numAttrs = 1;
+    GPUSOLVE_CUDA_CHECK(cudaLaunchKernelExC(&config, reinterpret_cast<const void*>(clustered), args));
+  }
+
+  // The most blocks of `kernel` that run as one cluster here: 0 where none
+  // can (a device before sm_90, or the kernel's binary built for one).
+  template <class Kernel>
+  static std::size_t largest_cluster(Kernel* kernel) {
+    int dev = 0, supported = 0;
+    GPUSOLVE_CUDA_CHECK(cudaGetDevice(&dev));
+    GPUSOLVE_CUDA_CHECK(cudaDeviceGetAttribute(&supported, cudaDevAttrClusterLaunch, dev));
+    cudaFuncAttributes attributes{};
+    GPUSOLVE_CUDA_CHECK(cudaFuncGetAttributes(&attributes, reinterpret_cast<const void*>(kernel)));
+    if (!supported || attributes.binaryVersion < 90) return 0;
+    GPUSOLVE_CUDA_CHECK(cudaFuncSetAttribute(reinterpret_cast<const void*>(kernel),
+                                             cudaFuncAttributeNonPortableClusterSizeAllowed, 1));
+    cudaLaunchConfig_t config{};
+    config.gridDim = dim3(persistent_max_cluster), config.blockDim = dim3(persistent_block_size);
+    int size = 0;
+    GPUSOLVE_CUDA_CHECK(cudaOccupancyMaxPotentialClusterSize(&size, reinterpret_cast<const void*>(kernel), &config));
+    return size < int(persistent_max_cluster) ? std::size_t(size) : std::size_t(persistent_max_cluster);
   }
 #endif
 
   std::size_t blocks_ = 0;
+  bool clusters_ = true, clustered_ = false;
   VectorD1<T, device_is<Device>> partials_;
   VectorD1<std::uint32_t, device_is<Device>> scan_totals_;
 };

@@ -343,6 +343,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       if (records_.size() == 0) records_ = HostBuffer<Record>(2);
       if (histories_[slot].size() < rule.max_checks()) histories_[slot] = HostBuffer<T>(rule.max_checks());
       omegas_[slot] = omega, retry_factors_[slot] = s.retry_omega_factor;
+      persistent_.set_clusters(s.persistent_clusters);
       persistent_.run_checked(attempt_start(true), iteration, between, rule,
                               detail::RetryRule<T>{s.retry_omega_factor, s.max_retries, scale_.data()}, residual_out,
                               records_.data() + slot, histories_[slot].data(), width, stream);

@@ -80,6 +80,12 @@ struct SolverSettings {
   // 1.02 million and 10% slower at 1.67 million, where an iteration is bound by
   // bandwidth, not by launches. The CPU ignores it.
   std::size_t persistent_max_contacts = 1000000;
+  // GPU (sm_90 and later): a persistent kernel whose grid fits in one
+  // thread-block cluster (at most 16 blocks of 256 threads: about 4 000
+  // contacts) runs as that cluster, its phases separated by the cluster's
+  // hardware barrier instead of the grid-wide barrier through global memory;
+  // the same blocks, the same arithmetic in the same order. The CPU ignores it.
+  bool persistent_clusters = true;
 
   // Throws InvalidArgumentError naming the first offending field.
   void validate() const {
