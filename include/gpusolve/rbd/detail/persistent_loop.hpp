@@ -152,7 +152,7 @@ struct CheckedRun {
 // The retries of a checked solve: an attempt whose rule ends diverged, while
 // fewer than `max` retries were made, multiplies *scale by `factor` (one
 // thread, visible to the start program after its first barrier) and starts
-// the next attempt.
+// the next attempt. *scale is 1 when the kernel starts, and again when it ends.
 template <class T>
 struct RetryRule {
   T factor;
@@ -210,7 +210,10 @@ __global__ void __launch_bounds__(persistent_block_size)
     __syncthreads();
     if (!again) break;
   }
-  if (writer) *record = run;
+  if (writer) {  // no phase reads the scale after the last attempt's start
+    *record = run;
+    *retries.scale = T(1);
+  }
 }
 #endif
 

@@ -279,7 +279,10 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       algorithms_.reserve_reduce(width, terms, T(0), detail::MaxOp{}, residual_out);
       algorithms_.reserve_reduce(width, terms, T(0), detail::PlusOp{}, residual_out);
     }
-    if (scale_.size_x() == 0) scale_.resize(1);
+    if (scale_.size_x() == 0) {
+      scale_.resize(1);
+      scale_.fill(T(1), stream);
+    }
 
     using Sink = decltype(acc_.sink());
     // Atomic without momentum runs an iteration as one phase (RotatedJacobiIteration).
@@ -332,7 +335,8 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
 
     if (persistent) {  // checks and retries run in the kernel: the host waits for its verdict at most
       if (s.max_retries > 0) this->start_.reserve(b);
-      scale_.fill(T(1), stream);
+      if (!scale_is_one_) scale_.fill(T(1), stream);
+      scale_is_one_ = true;  // the kernel leaves it 1
       const auto between = [&] {
         if constexpr (std::is_same_v<MomentumTag, NoMomentum>)
           return detail::NoStart{};
@@ -360,6 +364,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       const bool first_attempt = st.retries == 0;
       if (!first_attempt) contacts.x.fill(T(0), stream);
       scale_.fill(attempt_omega / omega, stream);
+      scale_is_one_ = attempt_omega == omega;
       const auto start = attempt_start(first_attempt);
       // Iterations `first` ... `last`, the last one measuring the residual.
       auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
@@ -398,6 +403,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   HostBuffer<T> histories_[2];  // per slot: the residual of each check of the last attempt
   T omegas_[2] = {}, retry_factors_[2] = {};
   VectorD1<T, device_is<Device>> scale_;  // the inverse blocks' factor: retry_omega_factor^retries
+  bool scale_is_one_ = true;               // *scale_ between solves, as the host last queued it
   detail::StreamMarks<Device, 1> done_;
 };
 
