@@ -1,7 +1,7 @@
 // The whole time step, per phase and in total, on the GPU and the CPU backend.
 //
 // Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance]
-//                          [--loop auto,auto-grid,auto-graph,auto-nograph,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
+//                          [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
 //                          [--cpu-max 1000000] [--csv FILE]
 //
 // For each N the shared pile (bench/shared_pile.hpp, ../shared/bench/PILE.md)
@@ -13,15 +13,13 @@
 //   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500.
 // --loop: how the GPU runs the solver's iterations between two residual checks:
 //   auto         the library's choice (SolverSettings::persistent_max_contacts,
-//                detection as one persistent kernel: detection_persistent_max_bodies,
-//                a persistent kernel of at most 16 blocks as one cluster:
-//                persistent_clusters);
+//                detection as a kept CUDA graph: detection_graph, and a persistent
+//                kernel of at most 16 blocks as one cluster: persistent_clusters);
 //   auto-grid    the same with every persistent kernel launched cooperatively;
-//   auto-graph   the same with detection as a kept CUDA graph of launches (detection_graph);
 //   auto-nograph the same with detection launched kernel by kernel;
 //   persistent   one cooperative kernel at any size;
-//   launches     a kernel launch per phase, detection too (persistent_max_contacts and
-//                detection_persistent_max_bodies 0, graphs and detection_graph off);
+//   launches     a kernel launch per phase, detection too (persistent_max_contacts 0,
+//                graphs and detection_graph off);
 //   graphs       the solver's launches captured into CUDA graphs
 //                (persistent_max_contacts 0, graphs on).
 // GPU, after 20 warm-up steps:
@@ -79,13 +77,12 @@ SolverSettings<T> settings_for(const std::string& mode, const std::string& loop)
     s.persistent_max_contacts = ~std::size_t(0);
   else if (loop == "launches" || loop == "graphs")
     s.persistent_max_contacts = 0;
-  else if (loop != "auto" && loop != "auto-grid" && loop != "auto-graph" && loop != "auto-nograph")
+  else if (loop != "auto" && loop != "auto-grid" && loop != "auto-nograph")
     throw InvalidArgumentError("bench: unknown loop '" + loop +
-                               "' (auto, auto-grid, auto-graph, auto-nograph, persistent, launches, graphs)");
+                               "' (auto, auto-grid, auto-nograph, persistent, launches, graphs)");
   s.persistent_clusters = loop != "auto-grid";
   s.graphs = loop == "graphs";
   s.detection_graph = loop != "auto-nograph" && loop != "launches";
-  if (loop == "auto-graph" || loop == "auto-nograph" || loop == "launches") s.detection_persistent_max_bodies = 0;
   s.friction = T(0.5);  // PILE.md
   if (mode == "jacobi10" || mode == "atomic10") {
     s.max_iterations = 10, s.check_every = 10;
@@ -183,7 +180,7 @@ Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const 
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--loop auto,auto-grid,auto-graph,auto-nograph,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
+      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
       "[--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

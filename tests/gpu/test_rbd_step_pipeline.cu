@@ -1,12 +1,10 @@
 // The queued time step on the GPU: queued steps equal steps one by one, late
 // statistics equal those read at once, a NaN in one body's state stops the
 // step naming the body and leaves every body as it was, and detection grows
-// its lists exactly as the CPU backend does, launched, as a graph or as one
-// persistent kernel.
+// its lists exactly as the CPU backend does.
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -148,10 +146,7 @@ TEST_CASE("GPU collision detection grows its lists and finds what the CPU finds"
   CHECK(keys(device::gpu{}) == cpu);
 }
 
-// The kept graph and the persistent kernel (one cluster, or the cooperative
-// grid) run the launches' functors: the same contacts, to the bit.
-TEST_CASE("GPU collision detection's kept graph and persistent kernel find what launching finds, through moves, "
-          "growth and a new margin",
+TEST_CASE("GPU collision detection's kept graph finds what launching finds, through moves, growth and a new margin",
           "[rbd_step][gpu][collision][graphs]") {
   BodySet<float> s;  // 60 spheres on a plane, first far apart
   for (std::size_t i = 0; i < 60; ++i)
@@ -159,28 +154,21 @@ TEST_CASE("GPU collision detection's kept graph and persistent kernel find what 
   s.add_plane({0, 0, 1}, 0.f);
   BodyManager<device::gpu, float> m(s);
   m.syncDeviceFull();
-  CollisionDetection<device::gpu, float> kept, fused, fused_grid, launched;
+  CollisionDetection<device::gpu, float> kept, launched;
   kept.set_graphs(true);
-  fused.set_persistent(~std::size_t(0));
-  fused_grid.set_persistent(~std::size_t(0), false);
-  Contacts<device::gpu, float, ConeFriction> ck, cf, cg, cl;
+  Contacts<device::gpu, float, ConeFriction> ck, cl;
   auto same = [&](float margin) {
     const std::size_t n = launched.detect(m.device(), cl, margin, 0.5f);
-    Contacts<device::cpu, float, ConeFriction> hl;
+    REQUIRE(kept.detect(m.device(), ck, margin, 0.5f) == n);
+    Contacts<device::cpu, float, ConeFriction> hk, hl;
+    hk.a = ck.a, hk.b = ck.b, hk.phi0 = ck.phi0, hk.n = ck.n;
     hl.a = cl.a, hl.b = cl.b, hl.phi0 = cl.phi0, hl.n = cl.n;
-    for (auto [way, cd, c] : {std::make_tuple("kept graph", &kept, &ck), std::make_tuple("persistent", &fused, &cf),
-                              std::make_tuple("persistent grid", &fused_grid, &cg)}) {
-      INFO(way);
-      REQUIRE(cd->detect(m.device(), *c, margin, 0.5f) == n);
-      Contacts<device::cpu, float, ConeFriction> h;
-      h.a = c->a, h.b = c->b, h.phi0 = c->phi0, h.n = c->n;
-      for (std::size_t i = 0; i < n; ++i) {
-        INFO("contact " << i);
-        REQUIRE(h.a(i) == hl.a(i));
-        REQUIRE(h.b(i) == hl.b(i));
-        REQUIRE(h.phi0(i) == hl.phi0(i));
-        for (int k = 0; k < 3; ++k) REQUIRE(h.n(i, k) == hl.n(i, k));
-      }
+    for (std::size_t i = 0; i < n; ++i) {
+      INFO("contact " << i);
+      REQUIRE(hk.a(i) == hl.a(i));
+      REQUIRE(hk.b(i) == hl.b(i));
+      REQUIRE(hk.phi0(i) == hl.phi0(i));
+      for (int k = 0; k < 3; ++k) REQUIRE(hk.n(i, k) == hl.n(i, k));
     }
     return n;
   };

@@ -134,7 +134,6 @@ class World {
     try {
       if (timing_) slot.marks.mark(0, stream_);
       detection_.set_graphs(s.detection_graph);
-      detection_.set_persistent(s.detection_persistent_max_bodies, s.persistent_clusters);
       detection_.detect(bodies, contacts_, s.margin, s.friction, stream_);
       if (timing_) slot.marks.mark(1, stream_);
       constexpr bool own_integration = !integrates<solver_type>::value;  // else the solver moves the bodies

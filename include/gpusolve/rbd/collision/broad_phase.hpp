@@ -8,7 +8,6 @@
 #include <cstdint>
 
 #include <limits>
-#include <utility>
 
 #include <cuda/atomic>
 
@@ -17,7 +16,6 @@
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/detail/device_algorithms.hpp"
-#include "gpusolve/rbd/detail/launch_exec.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/detail/thrust_backend.hpp"
 
@@ -141,38 +139,6 @@ struct PlaceSpheres {
   }
 };
 
-// The grid's rebuild as a program (persistent_loop.hpp's contract): clear()
-// zeroes the buckets' counts; bin(), once the cell size is in memory and the
-// counts are zero (after a barrier), hashes each sphere into its bucket; rest()
-// scans the counts and places the spheres, and ends with e.sync(). A caller
-// may queue phases of its own beside clear() and bin() (collision detection does).
-template <class View, class T, class U32View>
-struct GridBuild {
-  ZeroU32<U32View> clear_counts;
-  BinSpheres<View, T> binning;
-  PlaceSpheres<View, T> placing;
-  std::size_t spheres, buckets;
-  GPUSOLVE_EXEC_CHECK_DISABLE
-  template <class E>
-  GPUSOLVE_HD void clear(const E& e) const {
-    e.each(buckets, clear_counts);
-  }
-  GPUSOLVE_EXEC_CHECK_DISABLE
-  template <class E>
-  GPUSOLVE_HD void bin(const E& e) const {
-    e.each(spheres, binning);
-  }
-  GPUSOLVE_EXEC_CHECK_DISABLE
-  template <class E>
-  GPUSOLVE_HD void rest(const E& e) const {
-    e.sync();
-    e.scan(binning.count, binning.first + 1, buckets);
-    e.sync();
-    e.each(spheres, placing);
-    e.sync();
-  }
-};
-
 // Visits every grid sphere j > i near sphere i, in the 27 cells around i's,
 // in bucket order: visit(j, its packed sphere). A bucket two neighbour cells hash to is visited once;
 // spheres that share a bucket only by a hash collision fail the distance test.
@@ -270,13 +236,13 @@ class UniformGrid {
   using D1 = VectorD1<E, device_is<Device>>;
 
   using Walk = detail::NeighbourWalk<View, T>;
-  using Build = detail::GridBuild<View, T, decltype(std::declval<D1<std::uint32_t>&>().view())>;
 
-  // The grid's rebuild as a program (GridBuild) for a caller that runs it with
-  // phases of its own, and the walk it prepares: the cell size is read from
-  // `cell`, where the caller's reduction leaves SphereReach's maximum (cell()
-  // is then that). Storage is sized here, on the host.
-  std::pair<Build, Walk> program(Bodies<Device, T>& bodies, T margin, const T* cell) {
+  // Queues the grid's rebuild. Afterwards, in stream order, cell() holds the
+  // cell size (+inf when a radius or the margin is not finite) and walk(b,
+  // margin) visits each sphere's near neighbours in kernels (NeighbourWalk).
+  // A caller that reduces the bodies itself may pass `cell`, where its
+  // reduction leaves SphereReach's maximum in stream order; cell() is then that.
+  Walk queue_grid(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}, const T* cell = nullptr) {
     const View b = bodies.view();
     n_ = b.size();
     std::uint32_t buckets = 1;
@@ -285,28 +251,22 @@ class UniformGrid {
     detail::ensure_size(spheres_, n_);
     detail::ensure_size(bucket_count_, buckets);
     detail::ensure_size(first_, buckets + 1);
-    cell_used_ = cell;
-    const std::uint32_t mask = buckets - 1;
-    return {Build{{bucket_count_.view()},
-                  {b, cell, mask, hash_.data(), rank_.data(), bucket_count_.data(), first_.data()},
-                  {b, hash_.data(), rank_.data(), first_.data(), mask, index_.data(), spheres_.data()},
-                  n_,
-                  buckets},
-            Walk{b, cell, mask, margin, index_.data(), spheres_.data(), first_.data()}};
-  }
-
-  // Queues the grid's rebuild. Afterwards, in stream order, cell() holds the
-  // cell size (+inf when a radius or the margin is not finite) and walk(b,
-  // margin) visits each sphere's near neighbours in kernels (NeighbourWalk).
-  Walk queue_grid(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}) {
     if (cell_.size_x() == 0) cell_.resize(1);
-    const auto [build, walk] = program(bodies, margin, cell_.data());
+    cell_used_ = cell ? cell : cell_.data();
+    const Walk walk{b, cell_used_, buckets - 1, margin, index_.data(), spheres_.data(), first_.data()};
     if (n_ == 0) return walk;
-    algorithms_.max_into(n_, detail::SphereReach<View, T>{bodies.view(), margin}, T(0), cell_.data(), stream);
-    const detail::LaunchExec<Device, T> e{stream, &algorithms_};
-    build.clear(e);
-    build.bin(e);
-    build.rest(e);
+    const Device dev{};
+    if (!cell) algorithms_.max_into(n_, detail::SphereReach<View, T>{b, margin}, T(0), cell_.data(), stream);
+    bucket_count_.fill(0u, stream);
+    launch(dev, n_,
+           detail::BinSpheres<View, T>{b, cell_used_, buckets - 1, hash_.data(), rank_.data(), bucket_count_.data(),
+                                       first_.data()},
+           stream);
+    algorithms_.inclusive_sum(bucket_count_.data(), first_.data() + 1, buckets, stream);
+    launch(dev, n_,
+           detail::PlaceSpheres<View, T>{b, hash_.data(), rank_.data(), first_.data(), buckets - 1, index_.data(),
+                                         spheres_.data()},
+           stream);
     return walk;
   }
 

@@ -1,8 +1,7 @@
 // Collision detection where the bodies live: the broad phase's grid walked for
 // sphere pairs, every active sphere against the few obstacles (planes, boxes),
 // the narrow phase, and the contacts written by a count pass, a scan and a
-// write pass, all queued on one stream (as launches, or as the phases of one
-// persistent kernel); the host reads the counts once per step.
+// write pass, all queued on one stream; the host reads the counts once per step.
 #pragma once
 
 #include <cstddef>
@@ -23,8 +22,6 @@
 #include "gpusolve/rbd/collision/narrow_phase.hpp"
 #include "gpusolve/rbd/detail/device_algorithms.hpp"
 #include "gpusolve/rbd/detail/graph_replay.hpp"
-#include "gpusolve/rbd/detail/launch_exec.hpp"
-#include "gpusolve/rbd/detail/persistent_loop.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/detail/thrust_backend.hpp"
 
@@ -221,41 +218,6 @@ struct WriteContacts {
   }
 };
 
-// One detection as a program (persistent_loop.hpp's contract, reducing
-// BodyScan): the body scan (cell size, first non-finite body) beside the
-// clearing of the grid's counts and of the obstacle list; the grid and the
-// obstacle list; the count walk; the scan of the counts; the write walk,
-// whose sphere 0 writes the summary. Ends with e.sync().
-template <class View, class CView, class T, class U32View>
-struct DetectionProgram {
-  GridBuild<View, T, U32View> grid;
-  ZeroU32<U32View> clear_obstacles;  // their count
-  ScanBody<View, T> scan;
-  BodyScan<T>* scanned;
-  ListObstacles<View> obstacles;
-  CountContacts<ContactWalk<View, T>> count;
-  std::uint32_t* offsets;  // the inclusive scan of count.count
-  WriteContacts<ContactWalk<View, T>, CView, T> write;
-  std::size_t bodies;
-  GPUSOLVE_EXEC_CHECK_DISABLE
-  template <class E>
-  GPUSOLVE_HD void operator()(const E& e) const {
-    grid.clear(e);
-    e.each(1, clear_obstacles);
-    e.reduce(bodies, scan, BodyScan<T>{T(0), ~std::uint64_t(0)}, BodyScanOp{}, scanned);
-    e.sync();
-    grid.bin(e);
-    e.each(bodies, obstacles);
-    grid.rest(e);
-    e.each(bodies, count);
-    e.sync();
-    e.scan(count.count, offsets, bodies);
-    e.sync();
-    e.each(bodies, write);
-    e.sync();
-  }
-};
-
 // What the launches of one detection depend on besides the sizes of its
 // scratch stores, which stay put while the body count does: the bodies' and
 // contacts' views (their pointers and sizes), the margin and the friction
@@ -308,21 +270,14 @@ class CollisionDetection {
     for (;;) {
       contacts.resize(contacts.capacity());  // written up to the capacity, trimmed below
       const auto cv = contacts.view();
-      const auto program = detection_program(bodies, cv, margin, mu);
-      if (n <= persistent_max_ && persistent_.available()) {
-        graph_.forget();  // the program may have moved the scratch stores a kept graph points to
-        sized_for_ = 0;
-        persistent_.run_once(program, n, stream);
-      } else {
-        auto queue = [&](stream_t q) { program(detail::LaunchExec<Device, detail::BodyScan<T>>{q, &algorithms_}); };
-        if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
-          const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, mu};
-          graph_.run(key, queue, stream);
-        } else {  // scratch may have moved: no kept graph may point to it
-          graph_.forget();
-          queue(stream);
-          sized_for_ = n;
-        }
+      auto queue = [&](stream_t q) { queue_contacts(bodies, cv, margin, mu, q); };
+      if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
+        const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, mu};
+        graph_.run(key, queue, stream);
+      } else {  // scratch may have moved: no kept graph may point to it
+        graph_.forget();
+        queue(stream);
+        sized_for_ = n;
       }
       const auto s = detail::read_back<Device>(summary_.data(), 0, stream);
       if (s.non_finite != ~std::uint64_t(0)) throw detail::non_finite_state(s.non_finite);
@@ -341,37 +296,26 @@ class CollisionDetection {
   // and the parameters stay (DetectionKey); off by default, the World follows
   // SolverSettings::detection_graph.
   void set_graphs(bool on) { graphs_ = on; }
-  // GPU: run a detection of at most `max_bodies` bodies as one persistent
-  // kernel (detail/persistent_loop.hpp: its phases separated by barriers, not
-  // launches, and by a thread-block cluster's barrier where it fits in one and
-  // `clusters`; it takes precedence over graphs); 0, the default, launches
-  // every phase. The World follows SolverSettings::detection_persistent_max_bodies.
-  void set_persistent(std::size_t max_bodies, bool clusters = true) {
-    persistent_max_ = max_bodies;
-    persistent_.set_clusters(clusters);
-  }
 
  private:
-  // The detection's program over the bodies and the contacts' view `c`;
-  // its storage is sized here, on the host.
   template <class CView>
-  auto detection_program(Bodies<Device, T>& bodies, const CView& c, T margin, T mu) {
+  void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, T mu, stream_t stream) {
     const View b = bodies.view();
     const std::size_t n = b.size();
+    const Device dev{};
+    algorithms_.reduce_into(n, detail::ScanBody<View, T>{{b, margin}, {b}},
+                            detail::BodyScan<T>{T(0), ~std::uint64_t(0)}, detail::BodyScanOp{}, scan_.data(), stream);
+    const auto grid = grid_.queue_grid(bodies, margin, stream, &scan_.data()->cell);
+    obstacle_count_.fill(0u, stream);
+    launch(dev, n, detail::ListObstacles<View>{b, obstacles_.data(), obstacle_count_.data()}, stream);
     using Walk = detail::ContactWalk<View, T>;
-    const auto [build, grid] = grid_.program(bodies, margin, &scan_.data()->cell);
     const Walk walk{b, margin, grid, obstacles_.data(), obstacle_count_.data()};
-    return detail::DetectionProgram<View, CView, T, decltype(obstacle_count_.view())>{
-        build,
-        {obstacle_count_.view()},
-        {{b, margin}, {b}},
-        scan_.data(),
-        {b, obstacles_.data(), obstacle_count_.data()},
-        {walk, count_.data(), kept_.data(), n},
-        offset_.data(),
-        {walk, offset_.data(), count_.data(), kept_.data(), n, c, mu,
-         {offset_.data() + (n - 1), scan_.data(), summary_.data()}},
-        n};
+    launch(dev, n, detail::CountContacts<Walk>{walk, count_.data(), kept_.data(), n}, stream);
+    algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
+    launch(dev, n,
+           detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), kept_.data(), n, c, mu,
+                                                 {offset_.data() + (n - 1), scan_.data(), summary_.data()}},
+           stream);
   }
 
   UniformGrid<Device, T> grid_;
@@ -380,9 +324,7 @@ class CollisionDetection {
   D1<detail::DetectionSummary<T>> summary_;
   detail::DeviceAlgorithms<Device> algorithms_;
   detail::GraphReplay<Device> graph_;
-  detail::PersistentLoop<Device, detail::BodyScan<T>> persistent_;
   bool graphs_ = false;
-  std::size_t persistent_max_ = 0;
   std::size_t sized_for_ = 0;  // the body count the scratch stores were last sized for
 };
 

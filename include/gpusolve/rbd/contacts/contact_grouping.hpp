@@ -62,6 +62,12 @@ struct GroupRanks {
     rank[p] = k < bodies ? r : 0u;
   }
 };
+template <class U32View>
+struct ZeroU32 {
+  U32View v;
+  GPUSOLVE_HD void operator()(std::size_t i) const { v[i] = 0u; }
+};
+
 // The build as a program (detail/persistent_loop.hpp's contract, with
 // e.scan): the same phases as launches, or between a persistent kernel's
 // barriers. Ends with e.sync().

@@ -217,15 +217,10 @@ __global__ void __launch_bounds__(persistent_block_size)
 }
 #endif
 
-// The start program of a run that starts nothing, and the iteration program
-// of a run that is nothing but its start (run_once).
+// The start program of a run that starts nothing.
 struct NoStart {
   template <class E>
   GPUSOLVE_HD void operator()(const E&) const {}
-};
-struct NoIteration {
-  template <class E>
-  GPUSOLVE_HD void operator()(const E&, std::size_t, bool) const {}
 };
 
 // run(start, program, count, width, stream) queues `start` and `count`
@@ -267,13 +262,6 @@ class PersistentLoop {
 #endif
     (void)start, (void)program, (void)count, (void)width, (void)stream;
     unavailable();
-  }
-
-  // Queues one program (a start program: persistent_loop.hpp's contract) as
-  // one kernel, on the grid `width` indices get.
-  template <class Program>
-  void run_once(const Program& program, std::size_t width, stream_t stream) {
-    run(program, NoIteration{}, 0, width, stream);
   }
 
   // Queues a whole solve as one cooperative kernel (persistent_checked_kernel):

@@ -3,8 +3,6 @@
 
 #include <cstddef>
 
-#include "gpusolve/core/config.hpp"
-
 namespace gpusolve::rbd::detail {
 
 // Grows a VectorD1 to at least n elements, by half again so that slowly growing
@@ -24,13 +22,5 @@ bool ensure_size(V& v, std::size_t n, std::size_t rows) {
   v.resize(n + n / 2, rows);
   return true;
 }
-
-// A phase that zeroes a scratch vector of counts (a view of std::uint32_t),
-// for programs that clear their counters between barriers.
-template <class U32View>
-struct ZeroU32 {
-  U32View v;
-  GPUSOLVE_HD void operator()(std::size_t i) const { v[i] = 0u; }
-};
 
 }  // namespace gpusolve::rbd::detail

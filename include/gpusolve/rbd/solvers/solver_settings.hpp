@@ -61,12 +61,6 @@ struct SolverSettings {
   // On the shared pile on an H200 (bench/step.cu, README) it took 0.03 to 0.05
   // ms off a step at the defaults from 1 000 to 100 000 spheres. The CPU ignores it.
   bool detection_graph = true;
-  // GPU: collision detection of at most this many bodies runs as one
-  // persistent kernel, its phases separated by barriers instead of launches
-  // (CollisionDetection::set_persistent; a thread-block cluster's barrier
-  // where it fits in one: persistent_clusters); it takes precedence over
-  // detection_graph. 0: never. The CPU ignores it.
-  std::size_t detection_persistent_max_bodies = 1000000;
   // GPU: where the persistent kernel is not used (persistent_max_contacts), the
   // Jacobi-family solvers' runs of iterations between two residual checks are
   // captured into CUDA graphs, updated in place and replayed
