@@ -4,8 +4,9 @@
 The CSV comes from
   ncu --graph-profiling node --cache-control none --clock-control none \
       --metrics gpu__time_duration.sum --csv gpusolve_bench_step ... > ncu.csv
-Steps are delimited by the solver's persistent kernel (one per step at a fixed
-iteration count); the summary covers the last --steps of them.
+Steps are delimited by the solver's persistent kernel (one per step at one
+residual check; persistent_iterations_kernel before b5ad911, then
+persistent_checked_kernel); the summary covers the last --steps of them.
 """
 import argparse
 import collections
@@ -25,7 +26,7 @@ def main():
     if not rows:
         raise SystemExit("no gpu__time_duration.sum rows in " + args.csv)
     scale = {"ns": 1e-3, "nsecond": 1e-3, "us": 1.0, "usecond": 1.0, "ms": 1e3, "msecond": 1e3}[rows[0][13]]
-    ends = [i for i, r in enumerate(rows) if "persistent_iterations_kernel" in r[4]]
+    ends = [i for i, r in enumerate(rows) if re.search(r"persistent_(iterations|checked)_kernel", r[4])]
     if len(ends) <= args.steps:
         raise SystemExit(f"only {len(ends)} persistent kernels: fewer than --steps {args.steps} + 1")
     step = rows[ends[-args.steps - 1] + 1 : ends[-1] + 1]
