@@ -210,9 +210,10 @@ TEST_CASE("GPU persistent kernel: one cluster or the cooperative grid, ordered b
   GPUSOLVE_CUDA_CHECK(cudaGetDevice(&dev));
   GPUSOLVE_CUDA_CHECK(cudaDeviceGetAttribute(&clusters, cudaDevAttrClusterLaunch, dev));
   if (!clusters) WARN("this GPU has no thread-block clusters: every run below is a cooperative grid");
-  const std::size_t count = 50;
+  const std::size_t count = 50, block = rbd::detail::persistent_block_size,
+                    cluster = rbd::detail::persistent_max_cluster;
   for (const bool on : {true, false})
-    for (const std::size_t n : {std::size_t(1000), std::size_t(16 * 256), std::size_t(50000)}) {
+    for (const std::size_t n : {std::size_t(1000), cluster * block, std::size_t(50000)}) {
       INFO("clusters " << on << ", " << n << " indices");
       VectorD1<std::uint32_t, device_is<device::gpu>> a(n), b(n);
       b.fill(0u);
@@ -220,8 +221,8 @@ TEST_CASE("GPU persistent kernel: one cluster or the cooperative grid, ordered b
       loop.set_clusters(on);
       loop.run(rbd::detail::NoStart{}, Mirror{a.data(), b.data(), n}, count, n, stream_t{});
       GPUSOLVE_CUDA_CHECK(cudaDeviceSynchronize());
-      CHECK(loop.blocks() <= (n + 255) / 256);
-      CHECK((!loop.clustered() || loop.blocks() <= 16));
+      CHECK(loop.blocks() <= (n + block - 1) / block);
+      CHECK((!loop.clustered() || loop.blocks() <= cluster));
       if (clusters && n == 1000) CHECK(loop.clustered() == on);
       if (n == 50000) CHECK_FALSE(loop.clustered());
       const VectorD1<std::uint32_t> host(b);
