@@ -33,6 +33,24 @@ BodySet<T> pile(std::size_t n, std::size_t layers, T r = T(0.5), T gap = T(0)) {
   return set;
 }
 
+// n x n x n spheres of radius r on a cubic lattice of spacing 2.6 r, centred
+// on the origin, each moving towards the centre at `speed` times its
+// distance: a ball that closes up, so that its contacts (with a margin of
+// about r) grow from three per sphere to nearly nine. No plane.
+template <class T>
+BodySet<T> implosion(std::size_t n, T speed, T r = T(0.5)) {
+  BodySet<T> set;
+  const T d = T(2.6) * r, mid = T(n - 1) / 2;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = 0; k < n; ++k) {
+        const T x = (T(i) - mid) * d, y = (T(j) - mid) * d, z = (T(k) - mid) * d;
+        const std::size_t b = set.add_sphere({x, y, z}, r, T(1));
+        set[b].v = {-speed * x, -speed * y, -speed * z};
+      }
+  return set;
+}
+
 // Collision detection and the external velocity change of one step, as
 // World::step does them before its solve: the input of a solver.
 template <class Device, class T, class Model>

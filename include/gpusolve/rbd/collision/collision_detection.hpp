@@ -151,6 +151,16 @@ struct DetectionSummary {
   std::uint64_t non_finite;  // NonFiniteKey's minimum: the first body with a NaN or inf in its state
 };
 
+// Throws what makes a detection's contacts unusable: NonFiniteStateError
+// naming the first body whose state is not finite, InvalidArgumentError for a
+// radius or margin that is not finite.
+template <class T>
+void require_usable(const DetectionSummary<T>& s) {
+  if (s.non_finite != ~std::uint64_t(0)) throw non_finite_state(s.non_finite);
+  if (!(s.cell <= std::numeric_limits<T>::max()))
+    throw InvalidArgumentError("gpusolve: CollisionDetection: a sphere radius or the margin is not finite");
+}
+
 // One reduction over the bodies for the grid's cell size (SphereReach's
 // maximum) and the first body whose state is not finite (NonFiniteKey's
 // minimum), where two would each evaluate and reduce.
@@ -172,13 +182,21 @@ struct BodyScanOp {
   }
 };
 
+// Writes the summary, and sets *hold (where there is one) when the step must
+// not go on: more contacts than `capacity`, or what require_usable throws for.
 template <class T>
 struct Summarize {
   const std::uint32_t* contacts;
   const BodyScan<T>* scan;
   DetectionSummary<T>* out;
+  std::uint32_t* hold;
+  std::size_t capacity;
   GPUSOLVE_HD void operator()(std::size_t) const {
-    *out = DetectionSummary<T>{*contacts, scan->cell, scan->non_finite};
+    const DetectionSummary<T> s{*contacts, scan->cell, scan->non_finite};
+    *out = s;
+    if (hold != nullptr && (s.contacts > capacity || s.non_finite != ~std::uint64_t(0) ||
+                            !(s.cell <= std::numeric_limits<T>::max())))
+      *hold = 1;
   }
 };
 
@@ -228,6 +246,7 @@ struct DetectionKey {
   View bodies;
   ContactView contacts;
   T margin, mu;
+  std::uint32_t* hold;
 };
 
 }  // namespace detail
@@ -252,43 +271,37 @@ class CollisionDetection {
   template <class Model>
   std::size_t detect(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin, T mu = T(0),
                      stream_t stream = stream_t{}) {
-    if (!(margin >= 0)) throw InvalidArgumentError("gpusolve: CollisionDetection: margin must be >= 0");
-    const View b = bodies.view();
-    const std::size_t n = b.size();
-    if (n == 0) {
-      contacts.resize(0);
-      return 0;
-    }
-    detail::ensure_size(obstacles_, n);
-    detail::ensure_size(obstacle_count_, 1);
-    detail::ensure_size(count_, n);
-    detail::ensure_size(offset_, n);
-    detail::ensure_size(kept_, detail::kept_contacts * n);
-    detail::ensure_size(summary_, 1);
-    detail::ensure_size(scan_, 1);
-    if (contacts.capacity() < 4 * n) contacts.resize(4 * n);
+    if (!begin(bodies, contacts, margin)) return 0;
     for (;;) {
-      contacts.resize(contacts.capacity());  // written up to the capacity, trimmed below
-      const auto cv = contacts.view();
-      auto queue = [&](stream_t q) { queue_contacts(bodies, cv, margin, mu, q); };
-      if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
-        const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, mu};
-        graph_.run(key, queue, stream);
-      } else {  // scratch may have moved: no kept graph may point to it
-        graph_.forget();
-        queue(stream);
-        sized_for_ = n;
-      }
-      const auto s = detail::read_back<Device>(summary_.data(), 0, stream);
-      if (s.non_finite != ~std::uint64_t(0)) throw detail::non_finite_state(s.non_finite);
-      if (!(s.cell <= std::numeric_limits<T>::max()))
-        throw InvalidArgumentError("gpusolve: CollisionDetection: a sphere radius or the margin is not finite");
+      queue_detection(bodies, contacts, margin, mu, nullptr, stream);
+      const detail::DetectionSummary<T> s = summary(stream);
+      detail::require_usable(s);
       if (s.contacts <= contacts.capacity()) {
         contacts.resize(s.contacts);
         return s.contacts;
       }
       contacts.resize(s.contacts);
     }
+  }
+
+  // detect() without a host wait, for a step that goes on on the device
+  // (World::advance_unattended): the contacts keep their capacity as their
+  // size, and their count stays in device memory (Contacts::count_on_device).
+  // Where the step must not go on, the detection sets *hold to 1 (a word of
+  // the backend's memory; nothing clears it): more contacts than the
+  // capacity (those past it are not written), or what detect() throws for.
+  // summary() says which, once the stream has passed the detection.
+  template <class Model>
+  void detect_queued(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin, T mu,
+                     std::uint32_t* hold, stream_t stream = stream_t{}) {
+    if (!begin(bodies, contacts, margin)) return;
+    queue_detection(bodies, contacts, margin, mu, hold, stream);
+    contacts.count_on_device(&summary_.data()->contacts);
+  }
+
+  // The summary of the last detection; waits for it.
+  detail::DetectionSummary<T> summary(stream_t stream = stream_t{}) const {
+    return detail::read_back<Device>(summary_.data(), 0, stream);
   }
 
   // GPU: queue the detection's kernels as one CUDA graph (detail/graph_replay.hpp),
@@ -298,8 +311,49 @@ class CollisionDetection {
   void set_graphs(bool on) { graphs_ = on; }
 
  private:
+  // Validates the margin and sizes the scratch; false where there are no bodies (and no contacts).
+  template <class Model>
+  bool begin(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin) {
+    if (!(margin >= 0)) throw InvalidArgumentError("gpusolve: CollisionDetection: margin must be >= 0");
+    contacts.count_on_device(nullptr);
+    const std::size_t n = bodies.view().size();
+    if (n == 0) {
+      contacts.resize(0);
+      return false;
+    }
+    detail::ensure_size(obstacles_, n);
+    detail::ensure_size(obstacle_count_, 1);
+    detail::ensure_size(count_, n);
+    detail::ensure_size(offset_, n);
+    detail::ensure_size(kept_, detail::kept_contacts * n);
+    detail::ensure_size(summary_, 1);
+    detail::ensure_size(scan_, 1);
+    if (contacts.capacity() < 4 * n) contacts.resize(4 * n);
+    return true;
+  }
+
+  // Queues one detection into the contacts' whole capacity (their size).
+  template <class Model>
+  void queue_detection(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin, T mu,
+                       std::uint32_t* hold, stream_t stream) {
+    const View b = bodies.view();
+    const std::size_t n = b.size();
+    contacts.resize(contacts.capacity());  // written up to the capacity; detect() trims
+    const auto cv = contacts.view();
+    auto queue = [&](stream_t q) { queue_contacts(bodies, cv, margin, mu, hold, q); };
+    if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
+      const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, mu, hold};
+      graph_.run(key, queue, stream);
+    } else {  // scratch may have moved: no kept graph may point to it
+      graph_.forget();
+      queue(stream);
+      sized_for_ = n;
+    }
+  }
+
   template <class CView>
-  void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, T mu, stream_t stream) {
+  void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, T mu, std::uint32_t* hold,
+                      stream_t stream) {
     const View b = bodies.view();
     const std::size_t n = b.size();
     const Device dev{};
@@ -314,7 +368,8 @@ class CollisionDetection {
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
     launch(dev, n,
            detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), kept_.data(), n, c, mu,
-                                                 {offset_.data() + (n - 1), scan_.data(), summary_.data()}},
+                                                 {offset_.data() + (n - 1), scan_.data(), summary_.data(), hold,
+                                                  c.bound()}},
            stream);
   }
 

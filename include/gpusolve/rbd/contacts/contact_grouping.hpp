@@ -70,17 +70,19 @@ struct ZeroU32 {
 
 // The build as a program (detail/persistent_loop.hpp's contract, with
 // e.scan): the same phases as launches, or between a persistent kernel's
-// barriers. Ends with e.sync().
+// barriers. Ends with e.sync(). The entries are counted where the phases run
+// (the contacts' count may be known only to the device).
 template <class BV, class CV, class U32View>
 struct GroupingBuild {
   GroupKeys<BV, CV, U32View> keys;
   GroupArrive<U32View> arrive;
   GroupRanks<U32View> ranks;
   U32View count;
-  std::size_t entries, bodies;
+  std::size_t bodies;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
+    const std::size_t entries = 2 * keys.c.size();
     if (entries == 0) {
       e.each(bodies + 2, ZeroU32<U32View>{ranks.start});
       e.sync();
@@ -137,7 +139,7 @@ class ContactGrouping {
   // kernel); storage is sized here, on the host.
   template <class BV, class CV>
   detail::GroupingBuild<BV, CV, U32View> program(const BV& b, const CV& c, stream_t stream = stream_t{}) {
-    const std::size_t entries = 2 * c.size(), nb = b.size();
+    const std::size_t entries = 2 * c.bound(), nb = b.size();
     for (U32* v : {&key_, &arrival_, &arrived_, &sorted_, &slot_, &rank_}) detail::ensure_size(*v, entries);
     detail::ensure_size(count_, nb + 1);  // keys 0 ... nb: nb gathers the fixed bodies' entries
     detail::ensure_size(start_, nb + 2);
@@ -148,7 +150,6 @@ class ContactGrouping {
             {key_.view(), arrival_.view(), start_.view(), arrived_.view()},
             {key_.view(), arrival_.view(), start_.view(), arrived_.view(), sorted_.view(), slot_.view(), rank_.view(), nb},
             count_.view(),
-            entries,
             nb};
   }
 

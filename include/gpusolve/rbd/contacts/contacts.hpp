@@ -11,7 +11,9 @@
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
+#include "gpusolve/core/error.hpp"
 #include "gpusolve/rbd/contact_models/contact_model.hpp"
+#include "gpusolve/rbd/detail/extent.hpp"
 #include "gpusolve/rbd/detail/logical_view.hpp"
 
 namespace gpusolve::rbd {
@@ -75,21 +77,37 @@ struct Contacts {
   std::size_t size() const { return n_; }
   std::size_t capacity() const { return capacity_; }
 
+  // Where the count is known only to the backend (a step queued without a
+  // host wait, World::advance_unattended): views carry size() as their bound
+  // and read the count from *live in kernels. nullptr: size() is the count.
+  void count_on_device(const std::uint32_t* live) { live_ = live; }
+  const std::uint32_t* live_count() const { return live_; }
+
   template <class E>
   using D1View = decltype(std::declval<D1<E>&>().view());
   using VecD1View = D1View<T>;
   using VecD2View = decltype(std::declval<VecD2&>().view());
 
   // Kernel-side handle: trivially copyable, passed by value to launch. Its
-  // extents are the logical size, not the capacity.
+  // fields' extents are the logical size (the bound, where the count is on
+  // the device), not the capacity. Host code sizes by bound(); kernels loop
+  // to size().
   struct View {
-    std::size_t count;
+    detail::Extent count;
     D1View<std::uint32_t> a, b;
     VecD2View n, t, o, ra, rb;
     VecD1View phi0, mu;
     VecD2View dinv, x;
 
-    GPUSOLVE_HD std::size_t size() const { return count; }
+    GPUSOLVE_HD std::size_t size() const {
+#if !GPUSOLVE_DEVICE_CODE
+      if constexpr (std::is_same_v<Device, device::gpu>)
+        if (count.live != nullptr)
+          throw UnsupportedError("gpusolve: Contacts::View::size() on the host while the count is on the device");
+#endif
+      return count.size();
+    }
+    std::size_t bound() const { return count.bound; }
 
     // Writes contact i. V is any vector type with operator[](0..2). The
     // tangents are built from n, so friction rows are well defined for any
@@ -137,7 +155,7 @@ struct Contacts {
 
   View view() {
     using detail::logical;
-    return View{n_,
+    return View{{n_, live_},
                 logical(a.view(), n_),
                 logical(b.view(), n_),
                 logical(n.view(), n_),
@@ -154,6 +172,7 @@ struct Contacts {
  private:
   std::size_t n_ = 0;
   std::size_t capacity_ = 0;
+  const std::uint32_t* live_ = nullptr;
 };
 
 }  // namespace gpusolve::rbd

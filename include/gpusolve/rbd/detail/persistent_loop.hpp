@@ -170,13 +170,16 @@ struct RetryRule {
 // residual, the same in every block, so the grid takes every branch together.
 // The rules' state lives in shared memory: in registers it would be live
 // across every phase of the iterations. The start program is called from one
-// place, so the kernel holds its code once.
+// place, so the kernel holds its code once. Where *hold is not 0 (a held
+// step, World::advance_unattended) the kernel does nothing: every block reads
+// the same word, written before the launch.
 template <class Barrier, class Start, class Program, class Between, class Rule, class T>
 __global__ void __launch_bounds__(persistent_block_size)
     persistent_checked_kernel(Start start, Program program, Between between, Rule rule,
                               RetryRule<T> retries, const T* residual, CheckedRun<Rule>* record, T* history,
-                              T* partials, std::uint32_t* scan_totals) {
+                              const std::uint32_t* hold, T* partials, std::uint32_t* scan_totals) {
   static_assert(std::is_trivially_default_constructible_v<CheckedRun<Rule>>);
+  if (hold != nullptr && *hold != 0) return;
   const GridExec<T, Barrier> e{partials, scan_totals};
   __shared__ CheckedRun<Rule> run;
   __shared__ bool stop, again;  // two flags: a thread may still read one while the first thread writes the other
@@ -269,11 +272,12 @@ class PersistentLoop {
   // `retries`: neither the checks nor a retry needs the host.
   // Its verdict goes to *record and the residuals of the last attempt's checks
   // to history[0, record->checks): memory the host can read (pinned) once the
-  // stream is done, without a copy; history holds rule.max_checks().
+  // stream is done, without a copy; history holds rule.max_checks(). Nothing
+  // runs, and nothing is written, where `hold` is set and *hold is not 0.
   template <class Start, class Program, class Between, class Rule>
   void run_checked(const Start& start, const Program& program, const Between& between, const Rule& rule,
                    const RetryRule<T>& retries, const T* residual, CheckedRun<Rule>* record, T* history,
-                   std::size_t width, stream_t stream) {
+                   std::size_t width, stream_t stream, const std::uint32_t* hold = nullptr) {
 #if GPUSOLVE_HAS_NVCC
     if constexpr (std::is_same_v<Device, device::gpu>) {
       T* partials = nullptr;
@@ -282,7 +286,8 @@ class PersistentLoop {
                       const_cast<Between*>(&between), const_cast<Rule*>(&rule),
                       const_cast<RetryRule<T>*>(&retries), const_cast<T**>(&residual),
                       &record,                        &history,
-                      &partials,                      &scan_totals};
+                      &hold,                          &partials,
+                      &scan_totals};
       launch_persistent(&persistent_checked_kernel<GridBarrier, Start, Program, Between, Rule, T>,
                         &persistent_checked_kernel<ClusterBarrier, Start, Program, Between, Rule, T>, width, args,
                         partials, scan_totals, stream);
@@ -290,7 +295,7 @@ class PersistentLoop {
     }
 #endif
     (void)start, (void)program, (void)between, (void)rule, (void)retries, (void)residual, (void)record, (void)history,
-        (void)width, (void)stream;
+        (void)width, (void)stream, (void)hold;
     unavailable();
   }
 

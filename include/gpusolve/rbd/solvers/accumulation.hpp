@@ -284,9 +284,9 @@ class CacheStore {
  private:
   template <class CV>
   void size_for(const CV& c) {
-    ensure_size(dv_, 2 * c.size(), 3);
-    ensure_size(dw_, 2 * c.size(), 3);
-    entries_ = 2 * c.size();
+    ensure_size(dv_, 2 * c.bound(), 3);
+    ensure_size(dw_, 2 * c.bound(), 3);
+    entries_ = 2 * c.bound();
   }
 };
 

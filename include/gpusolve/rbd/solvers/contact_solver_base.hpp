@@ -37,19 +37,20 @@ class ContactSolverBase {
     return true;
   }
   // begin() but the inverse blocks, for a solver that runs inverse_blocks() itself.
+  // Sizes by the contacts' bound (Contacts::View::bound).
   bool prepare(const CV& c, const SolverSettings<T>& s, SolverStats<T>& stats) {
     s.validate();
-    stats.contacts = c.size();
-    if (c.size() == 0) return false;
-    detail::ensure_size(residual_, c.size());
+    stats.contacts = c.bound();
+    if (c.bound() == 0) return false;
+    detail::ensure_size(residual_, c.bound());
     return true;
   }
   InverseBlocks<Model, BV, CV, T> inverse_blocks(const BV& b, const CV& c) const { return {b, c}; }
   // The largest residual of this iteration's contacts (+inf for a non-finite velocity).
   T residual(const BV& b, std::size_t contacts, stream_t stream) { return check_(b, residual_.view(), contacts, stream); }
-  // Its terms, for a program that takes their maximum itself (over max(contacts, bodies) indices).
-  detail::ResidualOrNotFinite<BV, T> residual_terms(const BV& b, std::size_t contacts) {
-    return {b, residual_.view(), contacts};
+  // Its terms, for a program that takes their maximum itself (over max(contacts' bound, bodies) indices).
+  detail::ResidualOrNotFinite<BV, T> residual_terms(const BV& b, const CV& c) {
+    return {b, residual_.view(), c.count};
   }
 
   VectorD1<T, device_is<Device>> residual_;

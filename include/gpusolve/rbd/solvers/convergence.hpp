@@ -10,6 +10,7 @@
 
 #include "gpusolve/container/vector_view.hpp"
 #include "gpusolve/core/config.hpp"
+#include "gpusolve/rbd/detail/extent.hpp"
 #include "gpusolve/rbd/detail/reduce.hpp"
 #include "gpusolve/rbd/solvers/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
@@ -25,14 +26,14 @@ template <class BV, class T>
 struct ResidualOrNotFinite {
   BV b;
   VectorD1View<T> residual;
-  std::size_t contacts;
+  Extent contacts;
   GPUSOLVE_HD T operator()(std::size_t i) const {
     if (i < b.size())
       for (std::size_t c = 0; c < 3; ++c)
         if (!(std::fabs(b.v(i, c)) <= std::numeric_limits<T>::max()) ||
             !(std::fabs(b.w(i, c)) <= std::numeric_limits<T>::max()))
           return std::numeric_limits<T>::infinity();
-    return i < contacts ? residual[i] : T(0);
+    return i < contacts.size() ? residual[i] : T(0);
   }
 };
 
@@ -47,7 +48,7 @@ class ResidualCheck {
   template <class BV>
   T operator()(const BV& b, VectorD1View<T> residual, std::size_t contacts, stream_t stream = stream_t{}) {
     const std::size_t n = contacts > b.size() ? contacts : b.size();
-    return reduce_(n, detail::ResidualOrNotFinite<BV, T>{b, residual, contacts}, T(0), stream);
+    return reduce_(n, detail::ResidualOrNotFinite<BV, T>{b, residual, {contacts}}, T(0), stream);
   }
   std::size_t scratch_bytes() const { return reduce_.scratch_bytes(); }
 

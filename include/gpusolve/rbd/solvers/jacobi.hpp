@@ -254,6 +254,12 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     for (std::size_t k = 0; k < r.retries; ++k) stats.omega *= retry_factors_[slot];  // as solve_relaxed
   }
 
+  // Solves whose contacts' count is on the device (Contacts::count_on_device)
+  // do nothing while *hold is not 0, a word of the backend's memory that an
+  // earlier kernel of the stream may set (World::advance_unattended: a step
+  // that must not be taken). nullptr: never held.
+  void hold_while(const std::uint32_t* hold) { hold_ = hold; }
+
  private:
   // Queues the solve (solve(), solve_queued()). Returns true when it left its
   // verdict in `slot` for verdict() without waiting (`deferred` and the
@@ -261,10 +267,17 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   bool queue(BodyStore& bodies, ContactStore& contacts, const SolverSettings<T>& s, stream_t stream, bool from_x,
              std::size_t slot, bool deferred, SolverStats<T>& stats) {
     const BV b = bodies.view();
-    const CV c = contacts.view();
+    CV c = contacts.view();
+    const bool persistent = c.bound() <= s.persistent_max_contacts && persistent_.available();
+    if (c.count.live != nullptr && (!persistent || std::is_same_v<Strategy, UpdateCache>)) {
+      // A launched solve checks on the host, and the update cache's passes
+      // are counted there: the host reads the hold and the count.
+      if (hold_ != nullptr && detail::read_back<Device>(hold_, 0, stream) != 0) return false;
+      const std::size_t live = detail::read_back<Device>(c.count.live, 0, stream);
+      c.count = {live < c.bound() ? live : c.bound(), nullptr};
+    }
     if (!this->prepare(c, s, stats)) return false;
-    const std::size_t nc = c.size(), width = nc > b.size() ? nc : b.size();
-    const bool persistent = nc <= s.persistent_max_contacts && persistent_.available();
+    const std::size_t nc = c.bound(), width = nc > b.size() ? nc : b.size();
     const detail::LaunchExec<Device, T> launched{stream, &algorithms_};
     // The accumulator's preparation (Gather: the grouping's build) runs as the
     // persistent kernel's first phases, or is launched here.
@@ -274,7 +287,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     momentum_.begin(b, c);
     if (residual_out_.size_x() == 0) residual_out_.resize(1);
     T* const residual_out = residual_out_.data();
-    const auto terms = this->residual_terms(b, nc);
+    const auto terms = this->residual_terms(b, c);
     if (s.graphs) {  // a capture may not grow the reductions' buffers (the first node would keep the old one)
       algorithms_.reserve_reduce(width, terms, T(0), detail::MaxOp{}, residual_out);
       algorithms_.reserve_reduce(width, terms, T(0), detail::PlusOp{}, residual_out);
@@ -350,7 +363,8 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       persistent_.set_clusters(s.persistent_clusters);
       persistent_.run_checked(attempt_start(true), iteration, between, rule,
                               detail::RetryRule<T>{s.retry_omega_factor, s.max_retries, scale_.data()}, residual_out,
-                              records_.data() + slot, histories_[slot].data(), width, stream);
+                              records_.data() + slot, histories_[slot].data(), width, stream,
+                              c.count.live != nullptr ? hold_ : nullptr);
       if (!deferred) {
         done_.mark(0, stream);
         done_.wait(0);
@@ -404,6 +418,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   T omegas_[2] = {}, retry_factors_[2] = {};
   VectorD1<T, device_is<Device>> scale_;  // the inverse blocks' factor: retry_omega_factor^retries
   bool scale_is_one_ = true;               // *scale_ between solves, as the host last queued it
+  const std::uint32_t* hold_ = nullptr;    // hold_while
   detail::StreamMarks<Device, 1> done_;
 };
 

@@ -8,6 +8,7 @@
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/config.hpp"
+#include "gpusolve/rbd/detail/extent.hpp"
 #include "gpusolve/rbd/detail/persistent_loop.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 #include "gpusolve/rbd/solvers/iterate.hpp"
@@ -150,12 +151,12 @@ struct UphillTerm {
 template <class T>
 struct NesterovStep {
   UphillTerm<T> term;
-  std::size_t contacts;
+  Extent contacts;
   UpdateMomentum<T> update;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
-    e.sum(contacts, term, update.state + uphill_slot);
+    e.sum(contacts.size(), term, update.state + uphill_slot);
     e.each(1, update);
   }
 };
@@ -181,7 +182,7 @@ struct ResetMomentum {
 template <class BV, class CV, class T>
 struct StartMomentum {
   ResetMomentum<BV, CV, T> reset;
-  std::size_t n;  // max(contacts, bodies)
+  std::size_t n;  // max(contacts' bound, bodies)
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
@@ -201,16 +202,16 @@ class Momentum<Nesterov, Device, T> {
  public:
   template <class BV, class CV>
   void begin(const BV& b, const CV& c) {
-    detail::ensure_size(px_, c.size(), c.x.size_y());
+    detail::ensure_size(px_, c.bound(), c.x.size_y());
     detail::ensure_size(pv_, b.size(), 3);
     detail::ensure_size(pw_, b.size(), 3);
-    detail::ensure_size(uphill_, c.size());
+    detail::ensure_size(uphill_, c.bound());
     if (state_.size_x() == 0) state_.resize(detail::momentum_slots);
-    contacts_ = c.size();
+    contacts_ = c.count;
   }
   template <class BV, class CV>
   detail::StartMomentum<BV, CV, T> start(const BV& b, const CV& c) {
-    return {{b, c, px_.view(), pv_.view(), pw_.view(), state_.data()}, c.size() > b.size() ? c.size() : b.size()};
+    return {{b, c, px_.view(), pv_.view(), pw_.view(), state_.data()}, c.bound() > b.size() ? c.bound() : b.size()};
   }
   detail::ExtrapolatedIterate<T> iterate() {
     return {px_.view(), pv_.view(), pw_.view(), uphill_.view(), state_.data()};
@@ -224,7 +225,7 @@ class Momentum<Nesterov, Device, T> {
  private:
   VectorD2<T, device_is<Device>> px_, pv_, pw_;
   VectorD1<T, device_is<Device>> uphill_, state_;
-  std::size_t contacts_ = 0;
+  detail::Extent contacts_;
 };
 
 }  // namespace gpusolve::rbd

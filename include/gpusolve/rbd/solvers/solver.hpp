@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <type_traits>
 #include <utility>
 
@@ -49,6 +50,11 @@ namespace gpusolve::rbd {
 //    solve_queued() returns true when it did not wait: stats then holds the
 //    contact count until verdict() fills in the rest, once the stream has
 //    passed the solve (slot 0 or 1: two solves in flight).
+//  - a solver that takes contacts whose count only the backend knows (their
+//    views' size() read in kernels, the host sizing by bound()) offers
+//      void hold_while(const std::uint32_t* hold);
+//    and does nothing in a solve while *hold is not 0: World::advance_unattended
+//    then queues steps without waiting (solves_unattended below).
 // Adding a method is one header that defines its tag and solver, and its tests.
 
 template <class Method, class Device, class T, class Model>
@@ -88,6 +94,15 @@ struct queues_verdict<S, Device, T, Model,
     : std::true_type {};
 
 // The relaxation a solve uses: the settings' omega, or the method's default when it is 0.
+// Whether S solves contacts whose count only the backend knows
+// (Contacts::count_on_device) and skips a held step (hold_while(hold): *hold
+// not 0), so that World::advance_unattended queues its steps without a wait.
+template <class S, class = void>
+struct solves_unattended : std::false_type {};
+template <class S>
+struct solves_unattended<S, std::void_t<decltype(std::declval<S&>().hold_while(static_cast<const std::uint32_t*>(nullptr)))>>
+    : std::true_type {};
+
 template <class S, class T>
 T omega_of(const SolverSettings<T>& s) {
   return s.omega > T(0) ? s.omega : T(S::default_omega);

@@ -15,6 +15,7 @@
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/collision/broad_phase.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/detail/extent.hpp"
 #include "gpusolve/rbd/detail/scratch.hpp"
 
 namespace gpusolve::rbd {
@@ -26,12 +27,18 @@ namespace detail {
 // normal (Contacts::View::set_tangents) and may turn, even swap axes, from one
 // step to the next, so the impulse is re-expressed in the new frame rather than
 // copied row by row. Frictionless: the normal impulse itself.
+// Index 0 also records the contacts' count, which the next step's carry
+// reads where it runs (the count may be known only to the device).
 template <class Model, class CV, class T>
 struct RememberImpulse {
   CV c;
   std::uint64_t* keys;
   VectorD2View<T> p;  // contacts x Model::rows
+  std::uint32_t* count;
   GPUSOLVE_HD void operator()(std::size_t i) const {
+    const std::size_t n = c.size();
+    if (i == 0) *count = std::uint32_t(n);
+    if (i >= n) return;
     keys[i] = pair_key(c.a[i], c.b[i]);
     if constexpr (Model::rows == 3) {
       T x[3] = {c.x(i, 0), c.x(i, 1), c.x(i, 2)};
@@ -72,11 +79,13 @@ template <class Model, class CV, class T>
 struct CarryImpulse {
   CV c;
   const std::uint64_t* keys;  // previous step's pair keys, sorted
-  std::size_t count;
+  Extent previous;            // their number
   VectorD2View<T> p;
   T factor;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     constexpr std::size_t R = Model::rows;
+    if (i >= c.size()) return;
+    const std::size_t count = previous.size();
     const std::uint64_t key = pair_key(c.a[i], c.b[i]);
     const std::size_t j = lower_bound_near(keys, count, key, std::size_t(std::uint64_t(i) * count / c.size()));
     T x[R] = {};
@@ -109,9 +118,12 @@ class WarmStart {
  public:
   template <class CV>
   void carry(const CV& c, T factor, stream_t stream = stream_t{}) {
-    if (c.size() == 0) return;
-    launch(Device{}, c.size(), detail::CarryImpulse<Model, CV, T>{c, keys_.data(), count_, p_.view(), factor},
-           stream);
+    if (c.bound() != 0) launch(Device{}, c.bound(), carrier(c, factor), stream);
+  }
+  // carry() as a functor over the contacts' bound, for a caller that launches it.
+  template <class CV>
+  detail::CarryImpulse<Model, CV, T> carrier(const CV& c, T factor) {
+    return {c, keys_.data(), {count_, count_ != 0 ? live_.data() : nullptr}, p_.view(), factor};
   }
   template <class CV>
   void remember(const CV& c, stream_t stream = stream_t{}) {
@@ -122,20 +134,23 @@ class WarmStart {
   // runs it in a pass of its own; storage is sized here. Without `on`, forget().
   template <class CV>
   detail::RememberImpulse<Model, CV, T> rememberer(const CV& c, bool on = true) {
-    count_ = on ? c.size() : 0;
+    count_ = on ? c.bound() : 0;
     if (count_ != 0) {
       detail::ensure_size(keys_, count_);
       detail::ensure_size(p_, count_, Model::rows);
+      detail::ensure_size(live_, 1);
     }
-    return {c, keys_.data(), p_.view()};
+    return {c, keys_.data(), p_.view(), live_.data()};
   }
   // No impulses to carry (warm starting off): the next carry() starts all from zero.
   void forget() { count_ = 0; }
+  // The bound of the contacts remembered (their count is written where remember runs).
   std::size_t remembered() const { return count_; }
 
  private:
   VectorD1<std::uint64_t, device_is<Device>> keys_;
   VectorD2<T, device_is<Device>> p_;
+  VectorD1<std::uint32_t, device_is<Device>> live_;  // the remembered contacts' count
   std::size_t count_ = 0;
 };
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
@@ -12,10 +13,12 @@
 namespace gpusolve::rbd {
 
 // A step's accuracy figures: the largest penetration relative to the smaller
-// radius of the pair, kinetic and potential energy of the moving bodies.
+// radius of the pair, kinetic and potential energy of the moving bodies; and
+// the number of contacts, which a step queued without a host wait knows only here.
 template <class T>
 struct StepFigures {
   T max_penetration, kinetic_energy, potential_energy;
+  std::uint32_t contacts;
 };
 
 namespace detail {
@@ -58,7 +61,7 @@ struct PotentialEnergy {
   }
 };
 
-// The three figures in one reduction over max(contacts, bodies) indices.
+// The figures in one reduction over max(contacts' bound, bodies) indices.
 template <class BV, class CV, class T>
 struct StepFiguresOf {
   BV b;
@@ -66,7 +69,9 @@ struct StepFiguresOf {
   math::Vector3<T> g;
   GPUSOLVE_HD StepFigures<T> operator()(std::size_t i) const {
     StepFigures<T> f{};
-    if (i < c.size()) f.max_penetration = RelativePenetration<BV, CV, T>{b, c}(i);
+    const std::size_t contacts = c.size();
+    if (i == 0) f.contacts = std::uint32_t(contacts);
+    if (i < contacts) f.max_penetration = RelativePenetration<BV, CV, T>{b, c}(i);
     if (i < b.size()) {
       f.kinetic_energy = KineticEnergy<BV, T>{b}(i);
       f.potential_energy = PotentialEnergy<BV, T>{b, g}(i);
@@ -91,7 +96,8 @@ struct CombineFigures {
   template <class T>
   GPUSOLVE_HD StepFigures<T> operator()(const StepFigures<T>& x, const StepFigures<T>& y) const {
     return StepFigures<T>{x.max_penetration < y.max_penetration ? y.max_penetration : x.max_penetration,
-                          x.kinetic_energy + y.kinetic_energy, x.potential_energy + y.potential_energy};
+                          x.kinetic_energy + y.kinetic_energy, x.potential_energy + y.potential_energy,
+                          x.contacts + y.contacts};
   }
 };
 
@@ -102,7 +108,7 @@ struct CombineFigures {
 template <class Device, class T, class BV, class CV>
 void step_figures_into(detail::DeviceAlgorithms<Device>& algorithms, const BV& b, const CV& c,
                        const math::Vector3<T>& gravity, StepFigures<T>* out, stream_t stream = stream_t{}) {
-  const std::size_t n = c.size() > b.size() ? c.size() : b.size();
+  const std::size_t n = c.bound() > b.size() ? c.bound() : b.size();
   algorithms.reduce_into(n, detail::StepFiguresOf<BV, CV, T>{b, c, gravity}, StepFigures<T>{}, detail::CombineFigures{},
                          out, stream);
 }
@@ -113,7 +119,7 @@ void step_figures_into(detail::DeviceAlgorithms<Device>& algorithms, const BV& b
 template <class Device, class T, class BV, class CV, class Before>
 void step_figures_after(detail::DeviceAlgorithms<Device>& algorithms, const Before& before, const BV& b, const CV& c,
                         const math::Vector3<T>& gravity, StepFigures<T>* out, stream_t stream = stream_t{}) {
-  const std::size_t n = c.size() > b.size() ? c.size() : b.size();
+  const std::size_t n = c.bound() > b.size() ? c.bound() : b.size();
   using Figures = detail::StepFiguresOf<BV, CV, T>;
   algorithms.evaluate_and_reduce(n, detail::AfterEach<Before, Figures>{before, Figures{b, c, gravity}},
                                  StepFigures<T>{}, detail::CombineFigures{}, out, stream);
