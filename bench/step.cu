@@ -25,6 +25,9 @@
 // GPU, after 20 warm-up steps:
 //   step     median of CUDA-event times around each advance(1): what a step loop pays;
 //   queued   advance(steps) timed as one: steps queued back to back, divided by steps;
+//   unattended  advance_unattended(steps) timed as one, divided by steps: no host
+//            wait at all (the contact count stays on the device); the steps it
+//            had to queue again (a contact list that grew) are printed;
 //   phases   medians of the World's per-phase event times (set_phase_timing) over
 //            as many more steps.
 // CPU backend: the same World on device::cpu from the same state (host clock;
@@ -66,9 +69,9 @@ struct Options {
 };
 
 struct Row {
-  double step_ms = 0, queued_ms = 0, detection_ms = 0, solve_ms = 0, integration_ms = 0;
+  double step_ms = 0, queued_ms = 0, unattended_ms = 0, detection_ms = 0, solve_ms = 0, integration_ms = 0;
   double iterations = 0, penetration = 0, residual = 0;
-  std::size_t contacts = 0, steps = 0;
+  std::size_t contacts = 0, steps = 0, requeued = 0;
 };
 
 SolverSettings<T> settings_for(const std::string& mode, const std::string& loop) {
@@ -136,6 +139,11 @@ Row time_gpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
   timer.start();
   world.advance(std::size_t(steps));
   x.row.queued_ms = timer.stop_ms() / double(steps);
+  timer.start();
+  world.advance_unattended(std::size_t(steps));
+  x.row.unattended_ms = timer.stop_ms() / double(steps);
+  world.finish();
+  x.row.requeued = world.steps_requeued();
   world.set_phase_timing(true);
   for (long k = 0; k < steps; ++k) {
     world.advance(1);
@@ -159,7 +167,7 @@ Row time_cpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
     x.phases(st);
   }
   Row r = x.medians(steps);
-  r.queued_ms = r.step_ms;  // the host backend runs as it queues
+  r.queued_ms = r.unattended_ms = r.step_ms;  // the host backend runs as it queues
   return r;
 }
 
@@ -204,7 +212,8 @@ int main(int argc, char** argv) {
     std::printf("CPU backend: %d thread(s)\n", cpu_threads);
     std::FILE* csv = open_csv(o.csv,
                               "backend,n,mode,loop,contacts,steps,ms_step_median,ms_step_queued,ms_detection,ms_solve,"
-                              "ms_integration,iterations_mean,max_penetration,residual_median,cpu_threads,gpu");
+                              "ms_integration,iterations_mean,max_penetration,residual_median,cpu_threads,gpu,"
+                              "ms_step_unattended,steps_requeued");
     for (std::size_t n : o.n) {
       rbd::BodySet<T> set = shared_pile<T>(n);
       {
@@ -228,16 +237,18 @@ int main(int argc, char** argv) {
                         gpu ? g.c_str() : "-", steps);
             std::fflush(stdout);
             const Row r = time_mode(gpu, mode, g, set, steps);
-            std::printf("    %s %s %s: %zu contacts: step %.3f ms (queued %.3f ms), detection %.3f, solve %.3f, "
-                        "integration %.3f ms; %.1f iterations, penetration %.4f%%, residual %.3g\n",
+            std::printf("    %s %s %s: %zu contacts: step %.3f ms (queued %.3f ms, unattended %.3f ms, %zu steps "
+                        "requeued), detection %.3f, solve %.3f, integration %.3f ms; %.1f iterations, penetration "
+                        "%.4f%%, residual %.3g\n",
                         gpu ? "gpu" : "cpu", mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.step_ms, r.queued_ms,
-                        r.detection_ms, r.solve_ms, r.integration_ms, r.iterations, 100 * r.penetration, r.residual);
+                        r.unattended_ms, r.requeued, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations,
+                        100 * r.penetration, r.residual);
             std::fflush(stdout);
             if (csv)
-              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s\n",
+              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s,%.5f,%zu\n",
                            gpu ? "gpu" : "cpu", n, mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.steps, r.step_ms,
                            r.queued_ms, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations, r.penetration,
-                           r.residual, cpu_threads, gpu_name.c_str());
+                           r.residual, cpu_threads, gpu_name.c_str(), r.unattended_ms, r.requeued);
           }
       }
     }

@@ -106,9 +106,12 @@ class World {
   }
 
   // Queues `steps` steps with no host wait at all, where the method allows it
-  // (solves_unattended: the Jacobi family but the update cache) and
-  // settings().throw_on_divergence is off; else it is advance(). Each step's
-  // contact count stays on the device, sized by the contacts' capacity. A step
+  // (solves_unattended: the Jacobi family, whose update cache still reads its
+  // pass count, and whose launched path above persistent_max_contacts reads
+  // its checks) and settings().throw_on_divergence is off; else it is
+  // advance(). Each step's contact count stays on the device, its launches
+  // sized by the contacts' capacity and the solver's grid by the count the
+  // host last knew (a World's first step is taken as advance() takes it). A step
   // that cannot be taken (more contacts than the capacity, a body that is not
   // finite) is held on the device: it and every step after it in the stream
   // change nothing. finish(), which every other member that reads or changes
@@ -124,6 +127,10 @@ class World {
       if (guard_.size_x() == 0) {
         guard_.resize(2);
         guard_.fill(0u, stream_);
+      }
+      if (steps_ == 0 && steps > 0) {  // the host counts the first step's contacts: it sizes the solver's grid
+        queue_step(false);
+        --steps;
       }
       if (!unsettled_) unsettled_from_ = steps_;
       unsettled_ = true;

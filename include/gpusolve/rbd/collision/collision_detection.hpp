@@ -271,7 +271,8 @@ class CollisionDetection {
   template <class Model>
   std::size_t detect(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin, T mu = T(0),
                      stream_t stream = stream_t{}) {
-    if (!begin(bodies, contacts, margin)) return 0;
+    empty_ = !begin(bodies, contacts, margin);
+    if (empty_) return 0;
     for (;;) {
       queue_detection(bodies, contacts, margin, mu, nullptr, stream);
       const detail::DetectionSummary<T> s = summary(stream);
@@ -294,13 +295,16 @@ class CollisionDetection {
   template <class Model>
   void detect_queued(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin, T mu,
                      std::uint32_t* hold, stream_t stream = stream_t{}) {
-    if (!begin(bodies, contacts, margin)) return;
+    const std::size_t expected = contacts.expected_size();
+    empty_ = !begin(bodies, contacts, margin);
+    if (empty_) return;
     queue_detection(bodies, contacts, margin, mu, hold, stream);
-    contacts.count_on_device(&summary_.data()->contacts);
+    contacts.count_on_device(&summary_.data()->contacts, expected);
   }
 
   // The summary of the last detection; waits for it.
   detail::DetectionSummary<T> summary(stream_t stream = stream_t{}) const {
+    if (empty_) return {0u, T(0), ~std::uint64_t(0)};  // no bodies: nothing was queued
     return detail::read_back<Device>(summary_.data(), 0, stream);
   }
 
@@ -379,7 +383,7 @@ class CollisionDetection {
   D1<detail::DetectionSummary<T>> summary_;
   detail::DeviceAlgorithms<Device> algorithms_;
   detail::GraphReplay<Device> graph_;
-  bool graphs_ = false;
+  bool graphs_ = false, empty_ = false;
   std::size_t sized_for_ = 0;  // the body count the scratch stores were last sized for
 };
 

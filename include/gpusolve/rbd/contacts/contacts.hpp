@@ -79,9 +79,15 @@ struct Contacts {
 
   // Where the count is known only to the backend (a step queued without a
   // host wait, World::advance_unattended): views carry size() as their bound
-  // and read the count from *live in kernels. nullptr: size() is the count.
-  void count_on_device(const std::uint32_t* live) { live_ = live; }
+  // and read the count from *live in kernels; `expected` is the count the
+  // host last knew, which sizes grids (never a loop). nullptr: size() is the count.
+  void count_on_device(const std::uint32_t* live, std::size_t expected = 0) {
+    live_ = live;
+    expected_ = expected;
+  }
   const std::uint32_t* live_count() const { return live_; }
+  // The count, or where it is on the device, the count the host last knew.
+  std::size_t expected_size() const { return live_ != nullptr ? expected_ : n_; }
 
   template <class E>
   using D1View = decltype(std::declval<D1<E>&>().view());
@@ -173,6 +179,7 @@ struct Contacts {
   std::size_t n_ = 0;
   std::size_t capacity_ = 0;
   const std::uint32_t* live_ = nullptr;
+  std::size_t expected_ = 0;
 };
 
 }  // namespace gpusolve::rbd

@@ -35,6 +35,11 @@ struct ResidualOrNotFinite {
           return std::numeric_limits<T>::infinity();
     return i < contacts.size() ? residual[i] : T(0);
   }
+  // The indices the terms span: max(contacts, bodies).
+  GPUSOLVE_HD std::size_t width() const {
+    const std::size_t nc = contacts.size();
+    return nc > b.size() ? nc : b.size();
+  }
 };
 
 }  // namespace detail

@@ -50,8 +50,7 @@ struct JacobiIteration {
   Contact plain, measuring;
   Apply apply;
   Step momentum;
-  Residual residual;
-  std::size_t width;  // max(contacts, bodies): the residual's indices
+  Residual residual;  // over its width(): max(contacts, bodies)
   T* residual_out;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
@@ -66,7 +65,7 @@ struct JacobiIteration {
     apply(e);
     e.sync();
     if (last) {
-      e.reduce(width, residual, T(0), MaxOp{}, residual_out);
+      e.reduce(residual.width(), residual, T(0), MaxOp{}, residual_out);
       e.sync();
     }
   }
@@ -99,7 +98,6 @@ struct RotatedJacobiIteration {
   AtomicRotation<T> rotation;
   std::size_t bodies;
   Residual residual;
-  std::size_t width;
   T* residual_out;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
@@ -111,7 +109,7 @@ struct RotatedJacobiIteration {
     if (last) {
       e.each(bodies, rotation.fold(k));
       e.sync();
-      e.reduce(width, residual, T(0), MaxOp{}, residual_out);
+      e.reduce(residual.width(), residual, T(0), MaxOp{}, residual_out);
       e.sync();
     }
   }
@@ -268,7 +266,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
              std::size_t slot, bool deferred, SolverStats<T>& stats) {
     const BV b = bodies.view();
     CV c = contacts.view();
-    const bool persistent = c.bound() <= s.persistent_max_contacts && persistent_.available();
+    const bool persistent = contacts.expected_size() <= s.persistent_max_contacts && persistent_.available();
     if (c.count.live != nullptr && (!persistent || std::is_same_v<Strategy, UpdateCache>)) {
       // A launched solve checks on the host, and the update cache's passes
       // are counted there: the host reads the hold and the count.
@@ -277,7 +275,10 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       c.count = {live < c.bound() ? live : c.bound(), nullptr};
     }
     if (!this->prepare(c, s, stats)) return false;
-    const std::size_t nc = c.bound(), width = nc > b.size() ? nc : b.size();
+    // The persistent kernel's grid is sized for the count the host expects:
+    // its phases stride over whatever count the device holds.
+    const std::size_t nc = c.count.live != nullptr ? contacts.expected_size() : c.bound();
+    const std::size_t width = nc > b.size() ? nc : b.size();
     const detail::LaunchExec<Device, T> launched{stream, &algorithms_};
     // The accumulator's preparation (Gather: the grouping's build) runs as the
     // persistent kernel's first phases, or is launched here.
@@ -335,13 +336,13 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
         const auto r = acc_.rotation(b);
         const auto [plain, measuring] = contact_pair(r.sink(1), r.iterate(1));
         return detail::RotatedJacobiIteration<std::decay_t<decltype(plain)>, decltype(terms), T>{
-            plain, measuring, r, b.size(), terms, width, residual_out};
+            plain, measuring, r, b.size(), terms, residual_out};
       } else {
         const auto look = momentum_.iterate();
         const auto [plain, measuring] = contact_pair(acc_.sink(), look);
         return detail::JacobiIteration<std::decay_t<decltype(plain)>, decltype(acc_.program(b, look)),
                                        decltype(momentum_.program()), decltype(terms), T>{
-            plain, measuring, acc_.program(b, look), momentum_.program(), terms, width, residual_out};
+            plain, measuring, acc_.program(b, look), momentum_.program(), terms, residual_out};
       }
     }();
     if (!from_x) contacts.x.fill(T(0), stream);
