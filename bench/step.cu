@@ -28,6 +28,8 @@
 //   unattended  advance_unattended(steps) timed as one, divided by steps: no host
 //            wait at all (the contact count stays on the device); the steps it
 //            had to queue again (a contact list that grew) are printed;
+//            queued and unattended each run in a World of their own from the
+//            same state, after the same warm-up: the same steps;
 //   phases   medians of the World's per-phase event times (set_phase_timing) over
 //            as many more steps.
 // CPU backend: the same World on device::cpu from the same state (host clock;
@@ -125,8 +127,10 @@ struct Samples {
 };
 
 template <class Method>
-Row time_gpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
-  rbd::World<device::gpu, T, rbd::ConeFriction, Method> world(set, s);
+Row time_gpu(const rbd::BodySet<T>& start, const SolverSettings<T>& s, long steps) {
+  using World = rbd::World<device::gpu, T, rbd::ConeFriction, Method>;
+  rbd::BodySet<T> set = start, queued_set = start, unattended_set = start;
+  World world(set, s);
   world.advance(20);
   EventTimer timer(stream_t{});
   Samples x;
@@ -136,14 +140,22 @@ Row time_gpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
     x.ms.push_back(timer.stop_ms());
     x.accuracy(world.latest_stats());
   }
-  timer.start();
-  world.advance(std::size_t(steps));
-  x.row.queued_ms = timer.stop_ms() / double(steps);
-  timer.start();
-  world.advance_unattended(std::size_t(steps));
-  x.row.unattended_ms = timer.stop_ms() / double(steps);
-  world.finish();
-  x.row.requeued = world.steps_requeued();
+  {
+    World queued(queued_set, s);
+    queued.advance(20);
+    timer.start();
+    queued.advance(std::size_t(steps));
+    x.row.queued_ms = timer.stop_ms() / double(steps);
+  }
+  {
+    World unattended(unattended_set, s);
+    unattended.advance(20);
+    timer.start();
+    unattended.advance_unattended(std::size_t(steps));
+    x.row.unattended_ms = timer.stop_ms() / double(steps);
+    unattended.finish();
+    x.row.requeued = unattended.steps_requeued();
+  }
   world.set_phase_timing(true);
   for (long k = 0; k < steps; ++k) {
     world.advance(1);

@@ -2,9 +2,11 @@
 """Charts an A/B run of gpusolve_bench_step (bench/step.cu): two builds, each
 run one or more rounds on the same machine, their median step times side by
 side per mode and number of spheres (the mean of the rounds' medians, with
-each round as a dot).
+each round as a dot). --columns compares two columns instead (by default
+both ms_step_median), e.g. the same run's queued and unattended step times.
 
-Usage: python3 tools/plot_step_ab.py --a LABEL CSV [CSV ...] --b LABEL CSV [CSV ...] -o ab.png
+Usage: python3 tools/plot_step_ab.py --a LABEL CSV [CSV ...] --b LABEL CSV [CSV ...]
+                                     [--columns A_COLUMN B_COLUMN] -o ab.png
 """
 import argparse
 import sys
@@ -16,6 +18,7 @@ def main(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--a", nargs="+", required=True, metavar="LABEL_THEN_CSVS")
     ap.add_argument("--b", nargs="+", required=True, metavar="LABEL_THEN_CSVS")
+    ap.add_argument("--columns", nargs=2, default=["ms_step_median", "ms_step_median"], metavar="COLUMN")
     ap.add_argument("-o", "--out", required=True)
     a = ap.parse_args(argv)
     builds = [(g[0], read(g[1:])) for g in (a.a, a.b)]
@@ -31,7 +34,7 @@ def main(argv):
         for k, (label, build) in enumerate(builds):
             x, means = [], []
             for j, n in enumerate(sizes):
-                ms = [float(r["ms_step_median"]) for r in build if r["mode"] == mode and int(r["n"]) == n]
+                ms = [float(r[a.columns[k]]) for r in build if r["mode"] == mode and int(r["n"]) == n]
                 if not ms:
                     continue
                 pos = j + (k - 0.5) * width
@@ -41,7 +44,7 @@ def main(argv):
         ax.set_xticks(range(len(sizes)), [f"{n:,}" for n in sizes])
         ax.set_yscale("log")
         ax.set_xlabel("spheres")
-        ax.set_ylabel("ms per whole step (median)")
+        ax.set_ylabel("ms per whole step" + (" (median)" if a.columns[0] == "ms_step_median" else ""))
         ax.set_title(mode)
         ax.grid(True, axis="y", which="both", alpha=0.3)
         ax.legend(fontsize=7)
