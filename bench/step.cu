@@ -29,7 +29,9 @@
 //            wait at all (the contact count stays on the device); the steps it
 //            had to queue again (a contact list that grew) are printed;
 //            queued and unattended each run in a World of their own from the
-//            same state, after the same warm-up: the same steps;
+//            same state, after the same warm-up: the same steps; the mean
+//            iterations of the unattended steps come from one more World that
+//            takes them unattended one by one, reading each step's statistics;
 //   phases   medians of the World's per-phase event times (set_phase_timing) over
 //            as many more steps.
 // CPU backend: the same World on device::cpu from the same state (host clock;
@@ -72,7 +74,7 @@ struct Options {
 
 struct Row {
   double step_ms = 0, queued_ms = 0, unattended_ms = 0, detection_ms = 0, solve_ms = 0, integration_ms = 0;
-  double iterations = 0, penetration = 0, residual = 0;
+  double iterations = 0, penetration = 0, residual = 0, unattended_iterations = 0;
   std::size_t contacts = 0, steps = 0, requeued = 0;
 };
 
@@ -129,7 +131,7 @@ struct Samples {
 template <class Method>
 Row time_gpu(const rbd::BodySet<T>& start, const SolverSettings<T>& s, long steps) {
   using World = rbd::World<device::gpu, T, rbd::ConeFriction, Method>;
-  rbd::BodySet<T> set = start, queued_set = start, unattended_set = start;
+  rbd::BodySet<T> set = start, queued_set = start, unattended_set = start, counted_set = start;
   World world(set, s);
   world.advance(20);
   EventTimer timer(stream_t{});
@@ -156,6 +158,14 @@ Row time_gpu(const rbd::BodySet<T>& start, const SolverSettings<T>& s, long step
     unattended.finish();
     x.row.requeued = unattended.steps_requeued();
   }
+  {
+    World counted(counted_set, s);
+    counted.advance(20);
+    for (long k = 0; k < steps; ++k) {
+      counted.advance_unattended(1);
+      x.row.unattended_iterations += double(counted.latest_stats().solver.total_iterations) / double(steps);
+    }
+  }
   world.set_phase_timing(true);
   for (long k = 0; k < steps; ++k) {
     world.advance(1);
@@ -180,6 +190,7 @@ Row time_cpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
   }
   Row r = x.medians(steps);
   r.queued_ms = r.unattended_ms = r.step_ms;  // the host backend runs as it queues
+  r.unattended_iterations = r.iterations;
   return r;
 }
 
@@ -225,7 +236,7 @@ int main(int argc, char** argv) {
     std::FILE* csv = open_csv(o.csv,
                               "backend,n,mode,loop,contacts,steps,ms_step_median,ms_step_queued,ms_detection,ms_solve,"
                               "ms_integration,iterations_mean,max_penetration,residual_median,cpu_threads,gpu,"
-                              "ms_step_unattended,steps_requeued");
+                              "ms_step_unattended,steps_requeued,iterations_mean_unattended");
     for (std::size_t n : o.n) {
       rbd::BodySet<T> set = shared_pile<T>(n);
       {
@@ -250,17 +261,18 @@ int main(int argc, char** argv) {
             std::fflush(stdout);
             const Row r = time_mode(gpu, mode, g, set, steps);
             std::printf("    %s %s %s: %zu contacts: step %.3f ms (queued %.3f ms, unattended %.3f ms, %zu steps "
-                        "requeued), detection %.3f, solve %.3f, integration %.3f ms; %.1f iterations, penetration "
-                        "%.4f%%, residual %.3g\n",
+                        "requeued), detection %.3f, solve %.3f, integration %.3f ms; %.1f iterations (unattended "
+                        "%.1f), penetration %.4f%%, residual %.3g\n",
                         gpu ? "gpu" : "cpu", mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.step_ms, r.queued_ms,
                         r.unattended_ms, r.requeued, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations,
-                        100 * r.penetration, r.residual);
+                        r.unattended_iterations, 100 * r.penetration, r.residual);
             std::fflush(stdout);
             if (csv)
-              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s,%.5f,%zu\n",
+              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s,%.5f,%zu,%.2f\n",
                            gpu ? "gpu" : "cpu", n, mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.steps, r.step_ms,
                            r.queued_ms, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations, r.penetration,
-                           r.residual, cpu_threads, gpu_name.c_str(), r.unattended_ms, r.requeued);
+                           r.residual, cpu_threads, gpu_name.c_str(), r.unattended_ms, r.requeued,
+                           r.unattended_iterations);
           }
       }
     }
