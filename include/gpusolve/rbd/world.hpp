@@ -244,7 +244,8 @@ class World {
       const Device dev{};
       const auto bv = bodies.view();
       if (own_integration && bv.size() != 0)  // the LCP sees v + dt M^-1 f_ext (thesis Eq. 6)
-        launch(dev, bv.size(), detail::UnlessHeld<ApplyForces<typename Bodies<Device, T>::View, T>>{{bv, s.dt, g}, guard}, stream_);
+        launch(dev, bv.size(),
+               detail::UnlessHeld<ApplyForces<typename Bodies<Device, T>::View, T>>{{bv, s.dt, g}, guard}, stream_);
       const bool warm = s.warm_start > 0;
       if (warm && contacts_.view().bound() != 0)
         launch(dev, contacts_.view().bound(),
