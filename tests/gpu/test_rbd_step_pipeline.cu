@@ -10,34 +10,9 @@
 
 #include "catch_compat.hpp"
 #include "../host/test_rbd_scenes.hpp"
+#include "gpu_step_checks.hpp"
 
 using namespace rbd_test;
-
-namespace {
-
-// Writes a NaN into component 0 of body i's velocity, on the device.
-template <class BV>
-struct PoisonVelocity {
-  BV b;
-  std::size_t i;
-  GPUSOLVE_HD void operator()(std::size_t) const { b.v(i, 0) = std::numeric_limits<float>::quiet_NaN(); }
-};
-
-std::vector<float> host_state(const BodySet<float>& set) {
-  std::vector<float> out;
-  for (std::size_t i = 0; i < set.size(); ++i)
-    for (int c = 0; c < 3; ++c) out.push_back(set[i].pos[c]), out.push_back(set[i].v[c]), out.push_back(set[i].w[c]);
-  return out;
-}
-
-SolverSettings<float> settings() {
-  SolverSettings<float> s;
-  s.friction = 0.5f;
-  s.margin = 0;
-  return s;
-}
-
-}  // namespace
 
 TEST_CASE("GPU World: queued steps and late statistics equal steps taken one by one", "[rbd_step][gpu]") {
   auto set_a = pile<float>(5, 4), set_b = set_a;

@@ -11,31 +11,11 @@
 
 #include "catch_compat.hpp"
 #include "../host/test_rbd_scenes.hpp"
+#include "gpu_step_checks.hpp"
 
 using namespace rbd_test;
 
 namespace {
-
-template <class BV>
-struct PoisonVelocity {
-  BV b;
-  std::size_t i;
-  GPUSOLVE_HD void operator()(std::size_t) const { b.v(i, 0) = std::numeric_limits<float>::quiet_NaN(); }
-};
-
-std::vector<float> host_state(const BodySet<float>& set) {
-  std::vector<float> out;
-  for (std::size_t i = 0; i < set.size(); ++i)
-    for (int c = 0; c < 3; ++c) out.push_back(set[i].pos[c]), out.push_back(set[i].v[c]), out.push_back(set[i].w[c]);
-  return out;
-}
-
-SolverSettings<float> pile_settings() {
-  SolverSettings<float> s;
-  s.friction = 0.5f;
-  s.margin = 0;
-  return s;
-}
 
 // What a run leaves: the bodies, the contacts of its last step, the figures of its last two steps.
 struct Run {
@@ -88,7 +68,7 @@ TEST_CASE("GPU World: unattended steps equal advance() under the cluster, the gr
   for (const Case c : {Case{"cluster", 5, 4, true, 1000000}, Case{"grid", 5, 4, false, 1000000},
                        Case{"larger grid", 16, 5, true, 1000000}, Case{"launches", 5, 4, true, 0}}) {
     INFO(c.name);
-    SolverSettings<float> s = pile_settings();
+    SolverSettings<float> s = settings();
     s.persistent_clusters = c.clusters;
     s.persistent_max_contacts = c.persistent_max;
     s.max_iterations = 60, s.check_every = 20;
@@ -109,7 +89,7 @@ TEST_CASE("GPU World: unattended APGD and atomic Jacobi move the bodies as advan
   // atomics' order alone moved a body by 1.1e-3 within five steps here: two
   // steps for them (the first is taken attended).
   const auto set = pile<float>(8, 4);
-  SolverSettings<float> s = pile_settings();
+  SolverSettings<float> s = settings();
   s.margin = 0.1f;
   auto close = [](const Run& a, const Run& b) {
     REQUIRE(a.state.size() == b.state.size());
@@ -150,7 +130,7 @@ TEST_CASE("GPU World: an unattended step whose contacts outgrow the list is held
 TEST_CASE("GPU World: a NaN met by unattended steps names the body and the step, and nothing moves",
           "[rbd_step][gpu][unattended]") {
   auto set = pile<float>(4, 3);
-  World<device::gpu, float> w(set, pile_settings());
+  World<device::gpu, float> w(set, settings());
   w.advance_unattended(5);
   w.syncHost();
   const std::vector<float> before = host_state(set);

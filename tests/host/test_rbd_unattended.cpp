@@ -10,19 +10,11 @@
 
 #include "catch_compat.hpp"
 #include "test_rbd_scenes.hpp"
+#include "test_rbd_step_checks.hpp"
 
 using namespace rbd_test;
 
 namespace {
-
-template <class W>
-std::vector<double> state(W& w) {
-  auto& b = w.bodies();
-  std::vector<double> out;
-  for (std::size_t i = 0; i < b.size(); ++i)
-    for (std::size_t c = 0; c < 3; ++c) out.push_back(b.pos(i, c)), out.push_back(b.v(i, c)), out.push_back(b.w(i, c));
-  return out;
-}
 
 template <class W>
 std::vector<std::uint64_t> pairs(W& w) {
@@ -30,22 +22,6 @@ std::vector<std::uint64_t> pairs(W& w) {
   std::vector<std::uint64_t> out;
   for (std::size_t i = 0; i < c.size(); ++i) out.push_back(pair_key(c.a[i], c.b[i]));
   return out;
-}
-
-void same_stats(const StepStats<double>& a, const StepStats<double>& b) {
-  CHECK(a.solver.contacts == b.solver.contacts);
-  CHECK(a.solver.iterations == b.solver.iterations);
-  CHECK(a.solver.residual() == b.solver.residual());
-  CHECK(a.max_penetration == b.max_penetration);
-  CHECK(a.kinetic_energy == b.kinetic_energy);
-  CHECK(a.potential_energy == b.potential_energy);
-}
-
-SolverSettings<double> pile_settings() {
-  SolverSettings<double> s;
-  s.friction = 0.4;
-  s.margin = 0;
-  return s;
 }
 
 // Closes up the implosion ball: no gravity, a margin of a radius.
