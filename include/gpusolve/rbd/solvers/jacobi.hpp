@@ -276,11 +276,13 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     }
     if (!this->prepare(c, s, stats)) return false;
     // The persistent kernel's grid is sized for the count the host expects,
-    // an eighth more: its phases stride over whatever count the device holds,
-    // but a grid short of it gives threads a second contact and the
+    // a sixteenth more: its phases stride over whatever count the device
+    // holds, but a grid short of it gives threads a second contact and the
     // iteration twice the phase (under ncu on the 10 000-sphere pile the
     // kernel took 0.54 to 0.60 ms instead of 0.45 while the count outgrew it).
-    const std::size_t expected = contacts.expected_size() + contacts.expected_size() / 8;
+    // A sixteenth measured as fast as an eighth or faster in every mode, a
+    // thirty-second slower (bench/results/step/unattended).
+    const std::size_t expected = contacts.expected_size() + contacts.expected_size() / 16;
     const std::size_t nc = c.count.live != nullptr ? (expected < c.bound() ? expected : c.bound()) : c.bound();
     const std::size_t width = nc > b.size() ? nc : b.size();
     const detail::LaunchExec<Device, T> launched{stream, &algorithms_};
