@@ -94,6 +94,7 @@ struct UpdateMomentum {
 // which contact 0 writes.
 template <class T>
 struct ExtrapolatedIterate {
+  static constexpr bool bodies_first = false;  // iterate.hpp
   VectorD2View<T> px, pv, pw;
   VectorD1View<T> uphill;  // per contact
   T* state;
