@@ -10,8 +10,8 @@ the loads a chain of dependent loads waits on show up as long-scoreboard stalls
 at the first instruction that uses them.
 """
 import argparse
-import csv
-import gzip
+
+from ncu_step_summary import read_csv_rows
 
 SAMPLES = "Warp Stall Sampling (All Samples)"
 
@@ -28,9 +28,7 @@ def main():
     ap.add_argument("csv", help="ncu --page source --csv --print-source sass output (plain or .gz)")
     ap.add_argument("--top", type=int, default=25, help="how many instructions to list")
     args = ap.parse_args()
-    opener = gzip.open if args.csv.endswith(".gz") else open
-    with opener(args.csv, "rt") as f:
-        rows = list(csv.reader(f))
+    rows = read_csv_rows(args.csv)
     header = next((i for i, r in enumerate(rows) if SAMPLES in r), None)
     if header is None:
         raise SystemExit(f"no '{SAMPLES}' column in {args.csv}")

@@ -15,14 +15,19 @@ import gzip
 import re
 
 
+def read_csv_rows(path):
+    """The rows of an ncu --csv output, plain or gzipped (.gz)."""
+    opener = gzip.open if path.endswith(".gz") else open
+    with opener(path, "rt") as f:
+        return list(csv.reader(f))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("csv", help="ncu --csv output (plain or .gz)")
     ap.add_argument("--steps", type=int, default=100, help="how many of the last steps to summarise")
     args = ap.parse_args()
-    opener = gzip.open if args.csv.endswith(".gz") else open
-    with opener(args.csv, "rt") as f:
-        rows = [r for r in csv.reader(f) if len(r) > 14 and r[0] != "ID" and r[12] == "gpu__time_duration.sum"]
+    rows = [r for r in read_csv_rows(args.csv) if len(r) > 14 and r[0] != "ID" and r[12] == "gpu__time_duration.sum"]
     if not rows:
         raise SystemExit("no gpu__time_duration.sum rows in " + args.csv)
     scale = {"ns": 1e-3, "nsecond": 1e-3, "us": 1.0, "usecond": 1.0, "ms": 1e3, "msecond": 1e3}[rows[0][13]]
