@@ -6,6 +6,7 @@
 #include "gpusolve/math/expr.hpp"
 #include "gpusolve/math/expr_storage.hpp"
 #include "gpusolve/math/global.hpp"
+#include "gpusolve/math/load.hpp"
 #include "gpusolve/math/matrix3x3.hpp"
 #include "gpusolve/math/matrix_expr.hpp"
 #include "gpusolve/math/matrix_functions.hpp"

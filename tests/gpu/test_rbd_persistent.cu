@@ -1,4 +1,4 @@
-// The persistent solver kernel (detail/persistent_loop.hpp) against the same
+// The persistent solver kernel (execution/persistent_loop.hpp) against the same
 // iterations launched one kernel at a time: the same functors in the same
 // order, so Jacobi's two deterministic strategies agree bit for bit; APGD's
 // momentum sums its restart test in another order, so it agrees to rounding.

@@ -7,6 +7,7 @@
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
+#include "gpusolve/core/device_facts.hpp"
 #include "gpusolve/core/error.hpp"
 
 namespace gpusolve {
@@ -32,17 +33,6 @@ __global__ void for_each_index_kernel(std::size_t n, F f) {
   for (std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; i < n;
        i += stride)
     f(i);
-}
-
-inline int sm_count() {
-  // Cached per process for the device current at first use.
-  static const int count = [] {
-    int dev = 0, sms = 0;
-    GPUSOLVE_CUDA_CHECK(cudaGetDevice(&dev));
-    GPUSOLVE_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, dev));
-    return sms;
-  }();
-  return count;
 }
 
 }  // namespace detail

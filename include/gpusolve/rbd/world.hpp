@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <type_traits>
 
 #include "gpusolve/core/config.hpp"
@@ -16,9 +17,9 @@
 #include "gpusolve/rbd/collision/collision_detection.hpp"
 #include "gpusolve/rbd/contact_models/contact_model.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
-#include "gpusolve/rbd/detail/device_algorithms.hpp"
-#include "gpusolve/rbd/detail/hold.hpp"
-#include "gpusolve/rbd/detail/stream_marks.hpp"
+#include "gpusolve/rbd/execution/device_algorithms.hpp"
+#include "gpusolve/rbd/execution/unattended.hpp"
+#include "gpusolve/rbd/execution/stream_marks.hpp"
 #include "gpusolve/memory/buffer.hpp"
 #include "gpusolve/memory/cuda_host_allocator.hpp"
 #include "gpusolve/memory/standard_allocator.hpp"
@@ -28,7 +29,7 @@
 #include "gpusolve/rbd/solvers/jacobi.hpp"
 #include "gpusolve/rbd/solvers/solver.hpp"
 #include "gpusolve/rbd/solvers/substepping.hpp"
-#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 #include "gpusolve/rbd/solvers/warm_start.hpp"
 
@@ -36,20 +37,13 @@ namespace gpusolve::rbd {
 
 namespace detail {
 // The end of a step for index i: body i's move and contact i's impulse kept
-// for the next step's warm start (World::queue_step runs it with the figures).
-// A step queued without a wait (`guard` set) does nothing while it is held,
-// and counts itself taken at index 0 otherwise.
+// for the next step's warm start (fused with the step's figures).
 template <class Move, class Remember>
 struct StepEnd {
   Move move;
   Remember remember;
   std::size_t bodies, remembered;  // WarmStart::remembered()
-  std::uint32_t* guard;            // World's {hold, steps taken}, or nullptr
   GPUSOLVE_HD void operator()(std::size_t i) const {
-    if (guard != nullptr) {
-      if (guard[0] != 0) return;
-      if (i == 0) ++guard[1];
-    }
     if (i < bodies) move(i);
     if (i < remembered) remember(i);
   }
@@ -61,11 +55,15 @@ struct StepEnd {
 // runs where the bodies live; the host is touched only by syncHost() and the
 // statistics' scalars. Model: a contact model (contact_models/); Method: a
 // solver's tag (solvers/solver.hpp: Jacobi<Strategy>, ColouredGaussSeidel, ...).
-// The defaults are the atlas's best (README, "Choosing a method"): APGD with the
-// per-body gather, at its default budget (50 iterations) faster per step than
-// Jacobi and coloured Gauss-Seidel at equal penetration on the shared piles
-// (below about 20 iterations plain Jacobi is cheaper), and the one method that
-// converges on a 1:1000 mass-ratio column; and the isotropic cone.
+// The defaults, APGD with the per-body gather and the isotropic cone, are the
+// atlas's best at equal penetration (docs/tuning/solve.md).
+//
+// A step is five stages, queued in this order (queue_step):
+//   detect       contacts from the bodies' bounds and shapes (collision/)
+//   apply forces v + dt M^-1 f_ext, the velocity the contact solve sees (thesis Eq. 6)
+//   warm start   each persisting contact starts from a share of its last impulse
+//   solve        the Solver concept (solvers/): constrained velocities and impulses
+//   end of step  integrate, remember the impulses, write the figures: one pass
 template <class Device, class T = float, class Model = ConeFriction, class Method = AcceleratedJacobi<Gather>>
 class World {
  public:
@@ -102,7 +100,7 @@ class World {
   // step is not taken and no body changes.
   void advance(std::size_t steps = 1) {
     finish();
-    for (std::size_t k = 0; k < steps; ++k) queue_step(false);
+    for (std::size_t k = 0; k < steps; ++k) queue_step(nullptr);
   }
 
   // Queues `steps` steps with no host wait at all, where the method allows it
@@ -124,48 +122,26 @@ class World {
       advance(steps);
     } else {
       if (settings_.throw_on_divergence) return advance(steps);  // the host waits for each verdict
-      if (guard_.size_x() == 0) {
-        guard_.resize(2);
-        guard_.fill(0u, stream_);
-      }
       if (steps_ == 0 && steps > 0) {  // the host counts the first step's contacts: it sizes the solver's grid
-        queue_step(false);
+        queue_step(nullptr);
         --steps;
       }
-      if (!unsettled_) unsettled_from_ = steps_;
-      unsettled_ = true;
-      for (std::size_t k = 0; k < steps; ++k) queue_step(true);
+      unattended_.begin(steps_, stream_);
+      for (std::size_t k = 0; k < steps; ++k) queue_step(unattended_.hold());
     }
   }
 
   // Waits for the steps advance_unattended() queued and settles them (see there).
   void finish() {
-    while (unsettled_) {
-      unsettled_ = false;
-      const std::uint32_t hold = detail::read_back<Device>(guard_.data(), 0, stream_);
-      const std::uint32_t taken_total = detail::read_back<Device>(guard_.data(), 1, stream_);
-      const std::size_t taken = std::uint32_t(taken_total - taken_seen_);  // modulo 2^32, as the counter
-      taken_seen_ = taken_total;
-      const auto s = detection_.summary(stream_);
+    while (unattended_.pending()) {
+      const std::optional<std::size_t> held = unattended_.settle(stream_);
+      const auto summary = detection_.summary(stream_);
       contacts_.count_on_device(nullptr);
-      if (hold == 0) {
-        contacts_.resize(s.contacts);
+      if (!held) {
+        contacts_.resize(summary.contacts);
         return;
       }
-      const std::size_t held = unsettled_from_ + taken, queued = steps_;
-      steps_ = held;  // the steps from `held` on changed nothing
-      current_ = held % 2 == 0 ? 1 : 0;
-      guard_.fill(0u, stream_);
-      taken_seen_ = 0;
-      try {
-        detail::require_usable(s);
-      } catch (const NonFiniteStateError& e) {
-        contacts_.resize(s.contacts < contacts_.capacity() ? s.contacts : contacts_.capacity());
-        throw NonFiniteStateError(e.body(), e.field(), held);
-      }
-      contacts_.resize(s.contacts);  // grows the storage; the held steps are queued again
-      requeued_ += queued - held;
-      advance_unattended(queued - held);
+      queue_again_from(*held, summary);
     }
   }
 
@@ -184,7 +160,7 @@ class World {
   // Steps advance_unattended() queued again after they were held for a
   // contact list too small, as of the last finish() (each costs a step's
   // time; the list grows each time).
-  std::size_t steps_requeued() const { return requeued_; }
+  std::size_t steps_requeued() const { return unattended_.requeued(); }
 
   // Per-phase timing (StepStats::time_*): CUDA events on the GPU, which cost
   // no wait; off by default, and the times read zero.
@@ -210,70 +186,37 @@ class World {
   }
 
  private:
+  // The points of a step that its marks record.
+  enum Mark : std::size_t { begun, detected, solved, moved, figures_written, marks };
+
   // The host side of a queued step; its figures arrive in pinned memory.
   struct Slot {
     StepStats<T> stats;
-    detail::StreamMarks<Device, 5> marks;  // start, detected, solved, moved, figures written
+    detail::StreamMarks<Device, marks> marks_;
     bool timed = false;
     bool verdict_pending = false;  // the solver's verdict is read with the figures (solve_queued)
   };
 
-  // The slot of this step still holds the step before the previous one, which
-  // stays readable (previous_stats) until this step has been queued in full.
-  // `unattended`: the detection's count stays on the device, and every kernel
-  // after it does nothing while the step is held (advance_unattended).
-  void queue_step(bool unattended) {
-    auto& bodies = manager_.device();
-    const SolverSettings<T>& s = settings_;
-    const math::Vector3<T> g(s.gravity[0], s.gravity[1], s.gravity[2]);
+  // Queues the stages of one step. The slot of this step still holds the step
+  // before the previous one, which stays readable (previous_stats) until this
+  // step has been queued in full. `hold`: UnattendedSteps::hold() for a step
+  // queued unattended (its contact count stays on the device and every kernel
+  // after detection does nothing while the step is held), else nullptr.
+  void queue_step(std::uint32_t* hold) {
     const std::size_t k = steps_ % 2;
     Slot& slot = slots_[k];
     StepStats<T> stats;
     bool pending = false;
-    std::uint32_t* const guard = unattended ? guard_.data() : nullptr;  // guard[0]: the hold
     try {
-      if (timing_) slot.marks.mark(0, stream_);
-      detection_.set_graphs(s.detection_graph);
-      if (unattended)
-        detection_.detect_queued(bodies, contacts_, s.margin, s.friction, guard, stream_);
-      else
-        detection_.detect(bodies, contacts_, s.margin, s.friction, stream_);
-      if constexpr (solves_unattended<solver_type>::value) solver_.hold_while(guard);
-      if (timing_) slot.marks.mark(1, stream_);
-      constexpr bool own_integration = !integrates<solver_type>::value;  // else the solver moves the bodies
-      const Device dev{};
-      const auto bv = bodies.view();
-      if (own_integration && bv.size() != 0)  // the LCP sees v + dt M^-1 f_ext (thesis Eq. 6)
-        launch(dev, bv.size(),
-               detail::UnlessHeld<ApplyForces<typename Bodies<Device, T>::View, T>>{{bv, s.dt, g}, guard}, stream_);
-      const bool warm = s.warm_start > 0;
-      if (warm && contacts_.view().bound() != 0)
-        launch(dev, contacts_.view().bound(),
-               detail::UnlessHeld<decltype(warm_.carrier(contacts_.view(), s.warm_start))>{
-                   warm_.carrier(contacts_.view(), s.warm_start), guard},
-               stream_);
-      if constexpr (queues_verdict<solver_type, Device, T, Model>::value)  // no wait for the verdict
-        pending = solver_.solve_queued(bodies, contacts_, s, stream_, warm, k, stats.solver);
-      else
-        stats.solver = solver_.solve(bodies, contacts_, s, stream_, warm);
-      if (timing_) slot.marks.mark(2, stream_);
-      if (figures_.size() == 0) figures_ = Figures(2);
-      const auto cv = contacts_.view();
-      if (own_integration) {  // the move, the warm start's memory and the figures in one pass: "integration"
-        auto keep = warm_.rememberer(cv, warm);
-        const detail::StepEnd<decltype(body_move(bv, s.dt)), decltype(keep)> end{body_move(bv, s.dt), keep, bv.size(),
-                                                                               warm_.remembered(), guard};
-        step_figures_after(algorithms_, end, bv, cv, g, figures_.data() + k, stream_);
-        if (timing_) slot.marks.mark(3, stream_);
-      } else {
-        if (warm)
-          warm_.remember(cv, stream_);
-        else
-          warm_.forget();
-        if (timing_) slot.marks.mark(3, stream_);
-        step_figures_into(algorithms_, bodies.view(), cv, g, figures_.data() + k, stream_);
-      }
-      slot.marks.mark(4, stream_);
+      mark(slot, begun);
+      detect(hold);
+      mark(slot, detected);
+      apply_forces(hold);
+      const bool warm = warm_start(hold);
+      pending = solve(warm, hold, k, stats.solver);
+      mark(slot, solved);
+      end_step(warm, hold, k, slot);
+      slot.marks_.mark(figures_written, stream_);
     } catch (const NonFiniteStateError& e) {  // found by detection, nothing moved: say which step it stopped
       slot.timed = false;                      // its marks were overwritten
       throw NonFiniteStateError(e.body(), e.field(), steps_);
@@ -288,9 +231,96 @@ class World {
     ++steps_;
   }
 
+  void detect(std::uint32_t* hold) {
+    const SolverSettings<T>& s = settings_;
+    detection_.set_graphs(s.detection_graph);
+    if (hold != nullptr)
+      detection_.detect_queued(manager_.device(), contacts_, s.margin, s.friction, hold, stream_);
+    else
+      detection_.detect(manager_.device(), contacts_, s.margin, s.friction, stream_);
+  }
+
+  void apply_forces(const std::uint32_t* hold) {
+    if constexpr (!integrates<solver_type>::value) {  // else the solver moves the bodies
+      const auto bv = manager_.device().view();
+      if (bv.size() != 0)
+        launch(Device{}, bv.size(), detail::UnlessHeld<ApplyForces<BodyView, T>>{{bv, settings_.dt, gravity()}, hold},
+               stream_);
+    }
+  }
+
+  // Returns whether the solve starts from the carried impulses.
+  bool warm_start(const std::uint32_t* hold) {
+    const bool warm = settings_.warm_start > 0;
+    const auto cv = contacts_.view();
+    if (warm && cv.bound() != 0) {
+      const auto carrier = warm_.carrier(cv, settings_.warm_start);
+      launch(Device{}, cv.bound(), detail::UnlessHeld<decltype(carrier)>{carrier, hold}, stream_);
+    }
+    return warm;
+  }
+
+  // Returns whether the solver's verdict waits in slot k (solve_queued).
+  bool solve(bool warm, const std::uint32_t* hold, std::size_t k, SolverStats<T>& stats) {
+    auto& bodies = manager_.device();
+    if constexpr (solves_unattended<solver_type>::value) solver_.hold_while(hold);
+    if constexpr (queues_verdict<solver_type, Device, T, Model>::value) {  // no wait for the verdict
+      return solver_.solve_queued(bodies, contacts_, settings_, stream_, warm, k, stats);
+    } else {
+      stats = solver_.solve(bodies, contacts_, settings_, stream_, warm);
+      return false;
+    }
+  }
+
+  // Integrates, remembers the impulses for the next warm start and writes the
+  // figures into slot k: one pass over bodies and contacts where World integrates.
+  void end_step(bool warm, std::uint32_t* hold, std::size_t k, Slot& slot) {
+    const auto bv = manager_.device().view();
+    const auto cv = contacts_.view();
+    if constexpr (!integrates<solver_type>::value) {
+      auto keep = warm_.rememberer(cv, warm);
+      using End = detail::StepEnd<decltype(body_move(bv, settings_.dt)), decltype(keep)>;
+      const detail::CountedUnlessHeld<End> end{{body_move(bv, settings_.dt), keep, bv.size(), warm_.remembered()}, hold};
+      step_figures_after(algorithms_, end, bv, cv, gravity(), figures_.data() + k, stream_);
+      mark(slot, moved);
+    } else {
+      if (warm)
+        warm_.remember(cv, stream_);
+      else
+        warm_.forget();
+      mark(slot, moved);
+      step_figures_into(algorithms_, bv, cv, gravity(), figures_.data() + k, stream_);
+    }
+  }
+
+  // Steps from `held` on changed nothing: the contacts grow to the count the
+  // held detection found and those steps are queued again, or the body that is
+  // not finite is named (with the step) and nothing after it is queued.
+  void queue_again_from(std::size_t held, const detail::DetectionSummary<T>& summary) {
+    const std::size_t queued = steps_;
+    steps_ = held;
+    current_ = held % 2 == 0 ? 1 : 0;
+    try {
+      detail::require_usable(summary);
+    } catch (const NonFiniteStateError& e) {
+      contacts_.resize(summary.contacts < contacts_.capacity() ? summary.contacts : contacts_.capacity());
+      throw NonFiniteStateError(e.body(), e.field(), held);
+    }
+    contacts_.resize(summary.contacts);
+    unattended_.count_requeued(queued - held);
+    advance_unattended(queued - held);
+  }
+
+  void mark(Slot& slot, Mark m) {
+    if (timing_) slot.marks_.mark(m, stream_);
+  }
+  math::Vector3<T> gravity() const {
+    return math::Vector3<T>(settings_.gravity[0], settings_.gravity[1], settings_.gravity[2]);
+  }
+
   StepStats<T> stats_of(std::size_t k) {
     Slot& slot = slots_[k];
-    slot.marks.wait(4);
+    slot.marks_.wait(figures_written);
     StepStats<T> st = slot.stats;
     if constexpr (queues_verdict<solver_type, Device, T, Model>::value)
       if (slot.verdict_pending) solver_.verdict(k, st.solver);
@@ -300,12 +330,18 @@ class World {
     st.kinetic_energy = f.kinetic_energy;
     st.potential_energy = f.potential_energy;
     if (slot.timed) {
-      st.time_detection = slot.marks.seconds(0, 1);
-      st.time_solve = slot.marks.seconds(1, 2);
-      st.time_integration = slot.marks.seconds(2, 3);
+      st.time_detection = slot.marks_.seconds(begun, detected);
+      st.time_solve = slot.marks_.seconds(detected, solved);
+      st.time_integration = slot.marks_.seconds(solved, moved);
     }
     return st;
   }
+
+  using BodyView = typename Bodies<Device, T>::View;
+  // The figures of the last two steps, written by the reduction straight into
+  // pinned host memory (mapped into the device's address space).
+  using Figures = memory::Buffer<StepFigures<T>, std::conditional_t<std::is_same_v<Device, device::gpu>,
+                                                                    memory::CUDAHostAllocator, memory::StandardAllocator>>;
 
   BodyManager<Device, T> manager_;
   stream_t stream_;
@@ -315,20 +351,11 @@ class World {
   solver_type solver_;
   WarmStart<Device, T, Model> warm_;  // the previous step's impulses (settings.warm_start)
   detail::DeviceAlgorithms<Device> algorithms_;
-  // The figures of the last two steps, written by the reduction straight into
-  // pinned host memory (mapped into the device's address space).
-  using Figures = memory::Buffer<StepFigures<T>, std::conditional_t<std::is_same_v<Device, device::gpu>,
-                                                                    memory::CUDAHostAllocator, memory::StandardAllocator>>;
-  Figures figures_;
+  Figures figures_{2};
   Slot slots_[2];  // the last two steps queued
   std::size_t steps_ = 0, current_ = 0;
   bool timing_ = false;
-  // advance_unattended: {hold, steps taken} in the backend's memory, the
-  // steps taken when finish() last read them, and the first step not settled.
-  VectorD1<std::uint32_t, device_is<Device>> guard_;
-  std::uint32_t taken_seen_ = 0;
-  std::size_t unsettled_from_ = 0, requeued_ = 0;
-  bool unsettled_ = false;
+  UnattendedSteps<Device> unattended_;
 };
 
 }  // namespace gpusolve::rbd

@@ -11,7 +11,7 @@
 #include "gpusolve/container/vector_d2_offset.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
-#include "gpusolve/rbd/detail/logical_view.hpp"
+#include "gpusolve/container/logical_view.hpp"
 #include "gpusolve/rbd/bodies/shapes.hpp"
 
 namespace gpusolve::rbd {
@@ -104,7 +104,7 @@ struct Bodies {
   static_assert(std::is_trivially_copyable_v<View>);
 
   View view() {
-    using detail::logical;
+    using gpusolve::detail::logical;
     return View{n_,
                 logical(status.view(), n_),
                 logical(shape.view(), n_),

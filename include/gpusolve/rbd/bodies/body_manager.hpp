@@ -12,7 +12,7 @@
 #include "gpusolve/memory/copy.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/bodies/body_set.hpp"
-#include "gpusolve/rbd/integration/integrate.hpp"
+#include "gpusolve/rbd/bodies/derived_fields.hpp"
 
 namespace gpusolve::rbd {
 

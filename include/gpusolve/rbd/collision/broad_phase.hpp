@@ -15,9 +15,9 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
-#include "gpusolve/rbd/detail/device_algorithms.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
-#include "gpusolve/rbd/detail/thrust_backend.hpp"
+#include "gpusolve/rbd/execution/device_algorithms.hpp"
+#include "gpusolve/container/ensure_size.hpp"
+#include "gpusolve/rbd/execution/backend.hpp"
 
 namespace gpusolve::rbd {
 
@@ -247,10 +247,10 @@ class UniformGrid {
     n_ = b.size();
     std::uint32_t buckets = 1;
     while (buckets < 2 * n_ && buckets < (1u << 30)) buckets <<= 1;
-    for (D1<std::uint32_t>* v : {&hash_, &rank_, &index_}) detail::ensure_size(*v, n_);
-    detail::ensure_size(spheres_, n_);
-    detail::ensure_size(bucket_count_, buckets);
-    detail::ensure_size(first_, buckets + 1);
+    for (D1<std::uint32_t>* v : {&hash_, &rank_, &index_}) gpusolve::detail::ensure_size(*v, n_);
+    gpusolve::detail::ensure_size(spheres_, n_);
+    gpusolve::detail::ensure_size(bucket_count_, buckets);
+    gpusolve::detail::ensure_size(first_, buckets + 1);
     if (cell_.size_x() == 0) cell_.resize(1);
     cell_used_ = cell ? cell : cell_.data();
     const Walk walk{b, cell_used_, buckets - 1, margin, index_.data(), spheres_.data(), first_.data()};
@@ -277,7 +277,7 @@ class UniformGrid {
   void queue(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}) {
     const Walk walk = queue_grid(bodies, margin, stream);
     if (n_ == 0) return;
-    for (D1<std::uint32_t>* v : {&count_, &offset_}) detail::ensure_size(*v, n_);
+    for (D1<std::uint32_t>* v : {&count_, &offset_}) gpusolve::detail::ensure_size(*v, n_);
     if (pairs_.size_x() < 4 * n_) reserve(4 * n_);  // a pile has about 6 per sphere: at most one regrowth
     const Device dev{};
     launch(dev, n_, detail::CountPairs<Walk>{walk, count_.data()}, stream);
@@ -301,7 +301,7 @@ class UniformGrid {
   }
 
   // Room for at least `pairs` pairs (grows by half again; contents are lost).
-  void reserve(std::size_t pairs) { detail::ensure_size(pairs_, pairs); }
+  void reserve(std::size_t pairs) { gpusolve::detail::ensure_size(pairs_, pairs); }
   std::size_t capacity() const { return pairs_.size_x(); }
 
   // In the backend's memory, valid in stream order after queue():

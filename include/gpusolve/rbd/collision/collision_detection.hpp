@@ -20,10 +20,10 @@
 #include "gpusolve/rbd/collision/broad_phase.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
 #include "gpusolve/rbd/collision/narrow_phase.hpp"
-#include "gpusolve/rbd/detail/device_algorithms.hpp"
-#include "gpusolve/rbd/detail/graph_replay.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
-#include "gpusolve/rbd/detail/thrust_backend.hpp"
+#include "gpusolve/rbd/execution/device_algorithms.hpp"
+#include "gpusolve/rbd/execution/graph_replay.hpp"
+#include "gpusolve/container/ensure_size.hpp"
+#include "gpusolve/rbd/execution/backend.hpp"
 
 namespace gpusolve::rbd {
 namespace detail {
@@ -308,7 +308,7 @@ class CollisionDetection {
     return detail::read_back<Device>(summary_.data(), 0, stream);
   }
 
-  // GPU: queue the detection's kernels as one CUDA graph (detail/graph_replay.hpp),
+  // GPU: queue the detection's kernels as one CUDA graph (execution/graph_replay.hpp),
   // captured once and launched again while the bodies, the contacts' storage
   // and the parameters stay (DetectionKey); off by default, the World follows
   // SolverSettings::detection_graph.
@@ -325,13 +325,13 @@ class CollisionDetection {
       contacts.resize(0);
       return false;
     }
-    detail::ensure_size(obstacles_, n);
-    detail::ensure_size(obstacle_count_, 1);
-    detail::ensure_size(count_, n);
-    detail::ensure_size(offset_, n);
-    detail::ensure_size(kept_, detail::kept_contacts * n);
-    detail::ensure_size(summary_, 1);
-    detail::ensure_size(scan_, 1);
+    gpusolve::detail::ensure_size(obstacles_, n);
+    gpusolve::detail::ensure_size(obstacle_count_, 1);
+    gpusolve::detail::ensure_size(count_, n);
+    gpusolve::detail::ensure_size(offset_, n);
+    gpusolve::detail::ensure_size(kept_, detail::kept_contacts * n);
+    gpusolve::detail::ensure_size(summary_, 1);
+    gpusolve::detail::ensure_size(scan_, 1);
     if (contacts.capacity() < 4 * n) contacts.resize(4 * n);
     return true;
   }

@@ -17,8 +17,8 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/contacts/contact_grouping.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
-#include "gpusolve/rbd/detail/thrust_backend.hpp"
+#include "gpusolve/container/ensure_size.hpp"
+#include "gpusolve/rbd/execution/backend.hpp"
 
 namespace gpusolve::rbd {
 
@@ -118,9 +118,9 @@ class ContactColouring {
     if (nc == 0) return;
     const Device dev{};
     grouping_.build(b, c, stream);
-    detail::ensure_size(colour_, nc);
-    detail::ensure_size(order_, nc);
-    detail::ensure_size(best_, b.size());
+    gpusolve::detail::ensure_size(colour_, nc);
+    gpusolve::detail::ensure_size(order_, nc);
+    gpusolve::detail::ensure_size(best_, b.size());
     colour_.fill(detail::uncoloured, stream);
     if (counters_.size_x() == 0) counters_.resize(2);
     counters_.fill(0u, stream);
@@ -141,10 +141,10 @@ class ContactColouring {
     rounds_ = round;
     const auto policy = detail::thrust_policy(dev, stream);
     thrust::sequence(policy, order_.data(), order_.data() + nc);
-    detail::ensure_size(sorted_colour_, nc);
+    gpusolve::detail::ensure_size(sorted_colour_, nc);
     thrust::copy(policy, colour_.data(), colour_.data() + nc, sorted_colour_.data());
     thrust::stable_sort_by_key(policy, sorted_colour_.data(), sorted_colour_.data() + nc, order_.data());
-    detail::ensure_size(bounds_, colours + 1);
+    gpusolve::detail::ensure_size(bounds_, colours + 1);
     const thrust::counting_iterator<std::uint32_t> first(0);
     thrust::lower_bound(policy, sorted_colour_.data(), sorted_colour_.data() + nc, first, first + (colours + 1),
                         bounds_.data());

@@ -10,10 +10,10 @@
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/rbd/detail/device_algorithms.hpp"
-#include "gpusolve/rbd/detail/launch_exec.hpp"
-#include "gpusolve/rbd/detail/reduce.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/execution/device_algorithms.hpp"
+#include "gpusolve/rbd/execution/launch_exec.hpp"
+#include "gpusolve/rbd/execution/backend.hpp"
+#include "gpusolve/container/ensure_size.hpp"
 
 namespace gpusolve::rbd {
 
@@ -68,7 +68,7 @@ struct ZeroU32 {
   GPUSOLVE_HD void operator()(std::size_t i) const { v[i] = 0u; }
 };
 
-// The build as a program (detail/persistent_loop.hpp's contract, with
+// The build as a program (execution/persistent_loop.hpp's contract, with
 // e.scan): the same phases as launches, or between a persistent kernel's
 // barriers. Ends with e.sync(). The entries are counted where the phases run
 // (the contacts' count may be known only to the device).
@@ -140,9 +140,9 @@ class ContactGrouping {
   template <class BV, class CV>
   detail::GroupingBuild<BV, CV, U32View> program(const BV& b, const CV& c, stream_t stream = stream_t{}) {
     const std::size_t entries = 2 * c.bound(), nb = b.size();
-    for (U32* v : {&key_, &arrival_, &arrived_, &sorted_, &slot_, &rank_}) detail::ensure_size(*v, entries);
-    detail::ensure_size(count_, nb + 1);  // keys 0 ... nb: nb gathers the fixed bodies' entries
-    detail::ensure_size(start_, nb + 2);
+    for (U32* v : {&key_, &arrival_, &arrived_, &sorted_, &slot_, &rank_}) gpusolve::detail::ensure_size(*v, entries);
+    gpusolve::detail::ensure_size(count_, nb + 1);  // keys 0 ... nb: nb gathers the fixed bodies' entries
+    gpusolve::detail::ensure_size(start_, nb + 2);
     bodies_ = nb;
     max_segment_known_ = false;
     stream_ = stream;
@@ -158,7 +158,10 @@ class ContactGrouping {
   // after a build waits for it.
   std::size_t max_segment() {
     if (!max_segment_known_) {
-      max_segment_ = max_over(Device{}, bodies_, detail::SegmentLength<U32View>{start_.view()}, std::uint32_t(0), stream_);
+      if (max_segment_out_.size_x() == 0) max_segment_out_.resize(1);
+      algorithms_.reduce_into(bodies_, detail::SegmentLength<U32View>{start_.view()}, std::uint32_t(0), detail::MaxOp{},
+                              max_segment_out_.data(), stream_);
+      max_segment_ = detail::read_back<Device>(max_segment_out_.data(), 0, stream_);
       max_segment_known_ = true;
     }
     return max_segment_;
@@ -172,7 +175,7 @@ class ContactGrouping {
   }
 
  private:
-  U32 key_, arrival_, arrived_, sorted_, slot_, rank_, count_, start_;
+  U32 key_, arrival_, arrived_, sorted_, slot_, rank_, count_, start_, max_segment_out_;
   detail::DeviceAlgorithms<Device> algorithms_;
   stream_t stream_{};
   std::size_t bodies_ = 0, max_segment_ = 0;

@@ -13,8 +13,8 @@
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/core/error.hpp"
 #include "gpusolve/rbd/contact_models/contact_model.hpp"
-#include "gpusolve/rbd/detail/extent.hpp"
-#include "gpusolve/rbd/detail/logical_view.hpp"
+#include "gpusolve/rbd/contacts/extent.hpp"
+#include "gpusolve/container/logical_view.hpp"
 
 namespace gpusolve::rbd {
 
@@ -160,7 +160,7 @@ struct Contacts {
   static_assert(std::is_trivially_copyable_v<View>);
 
   View view() {
-    using detail::logical;
+    using gpusolve::detail::logical;
     return View{{n_, live_},
                 logical(a.view(), n_),
                 logical(b.view(), n_),

@@ -45,9 +45,9 @@
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/contact_models/cone_friction.hpp"
-#include "gpusolve/rbd/detail/device_algorithms.hpp"
-#include "gpusolve/rbd/detail/launch_exec.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/execution/device_algorithms.hpp"
+#include "gpusolve/rbd/execution/launch_exec.hpp"
+#include "gpusolve/container/ensure_size.hpp"
 #include "gpusolve/rbd/solvers/accumulation.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
 #include "gpusolve/rbd/solvers/contact_solver_base.hpp"
@@ -56,7 +56,7 @@
 #include "gpusolve/rbd/solvers/momentum.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
 #include "gpusolve/rbd/solvers/solver.hpp"
-#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {
@@ -292,7 +292,7 @@ struct BodyDirection {
     for (std::size_t c = 0; c < 3; ++c) dvp(k, c) = sv[c], dwp(k, c) = sw[c];
     if (state[mode_slot] > T(0)) {
       const math::Vector3<T> w(sw[0], sw[1], sw[2]);
-      const math::Vector3<T> Iw = math::inverse_spd(detail::load9<T>(b.inv_inertia, k)) * w;
+      const math::Vector3<T> Iw = math::inverse_spd(math::load9<T>(b.inv_inertia, k)) * w;
       pwp[k] = (sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]) / b.inv_mass[k] + math::dot(w, Iw);
     } else {
       for (std::size_t c = 0; c < 3; ++c) b.v(k, c) += sv[c], b.w(k, c) += sw[c];
@@ -358,8 +358,8 @@ struct Advance {
     const detail::Frame<T, Model, CV> f(c, i);
     const std::uint32_t ia = c.a[i], ib = c.b[i];
     const math::Vector3<T> du =
-        detail::point_velocity(detail::load3<T>(dvp, ia), detail::load3<T>(dwp, ia), detail::load3<T>(c.ra, i)) -
-        detail::point_velocity(detail::load3<T>(dvp, ib), detail::load3<T>(dwp, ib), detail::load3<T>(c.rb, i));
+        detail::point_velocity(math::load3<T>(dvp, ia), math::load3<T>(dwp, ia), math::load3<T>(c.ra, i)) -
+        detail::point_velocity(math::load3<T>(dvp, ib), math::load3<T>(dwp, ib), math::load3<T>(c.rb, i));
     if (cg) {
       T x[R];
       bool moved = false;
@@ -455,10 +455,10 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
     const Device dev{};
     acc_.prepare(b, c, stream);
     stats.reduction_passes = acc_.passes();
-    for (auto* v : {&rhs_, &p_, &px_, &pg_}) detail::ensure_size(*v, nc, Model::rows);
-    for (auto* v : {&dvp_, &dwp_, &pv_, &pw_}) detail::ensure_size(*v, nb, 3);
-    for (auto* v : {&rz_, &chop_, &step_, &uphill_, &descent_}) detail::ensure_size(*v, nc);
-    detail::ensure_size(pwp_, nb);
+    for (auto* v : {&rhs_, &p_, &px_, &pg_}) gpusolve::detail::ensure_size(*v, nc, Model::rows);
+    for (auto* v : {&dvp_, &dwp_, &pv_, &pw_}) gpusolve::detail::ensure_size(*v, nb, 3);
+    for (auto* v : {&rz_, &chop_, &step_, &uphill_, &descent_}) gpusolve::detail::ensure_size(*v, nc);
+    gpusolve::detail::ensure_size(pwp_, nb);
     if (state_.size_x() == 0) state_.resize(acg::slots);
     T* state = state_.data();
     using Sink = decltype(acc_.sink());

@@ -11,10 +11,10 @@
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/contacts/contact_grouping.hpp"
-#include "gpusolve/rbd/detail/launch_exec.hpp"
-#include "gpusolve/rbd/detail/packed_velocity.hpp"
-#include "gpusolve/rbd/detail/persistent_loop.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/execution/launch_exec.hpp"
+#include "gpusolve/rbd/solvers/packed_velocity.hpp"
+#include "gpusolve/rbd/execution/persistent_loop.hpp"
+#include "gpusolve/container/ensure_size.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
 #include "gpusolve/rbd/solvers/iterate.hpp"
 
@@ -35,7 +35,7 @@ struct Gather {};
 // are known, sink() for ResolveCollisions (add(entry, body, dv, dw)), apply()
 // adds the iteration's sums to the body velocities (UpdateVelocities) and
 // leaves the accumulator ready for the next iteration. program(b, it) is apply()
-// as phases of an iteration program (detail/persistent_loop.hpp), the sums
+// as phases of an iteration program (execution/persistent_loop.hpp), the sums
 // added to the velocities by the iterate `it` (iterate.hpp; by default to the
 // velocities as they are): apply() runs it with a launch per phase, a
 // persistent kernel runs it between barriers. Its last phase is left open (no
@@ -284,8 +284,8 @@ class CacheStore {
  private:
   template <class CV>
   void size_for(const CV& c) {
-    ensure_size(dv_, 2 * c.bound(), 3);
-    ensure_size(dw_, 2 * c.bound(), 3);
+    gpusolve::detail::ensure_size(dv_, 2 * c.bound(), 3);
+    gpusolve::detail::ensure_size(dw_, 2 * c.bound(), 3);
     entries_ = 2 * c.bound();
   }
 };
@@ -331,7 +331,7 @@ class Accumulator<Atomic, Device, T> {
   template <class BV, class CV>
   void prepare(const BV& b, const CV&, stream_t stream = stream_t{}) {
     bodies_ = b.size();
-    if (!detail::ensure_size(sums_, 3 * detail::packed_width * bodies_)) sums_.fill(T(0), stream);  // a new store is zero
+    if (!gpusolve::detail::ensure_size(sums_, 3 * detail::packed_width * bodies_)) sums_.fill(T(0), stream);  // a new store is zero
   }
   template <class BV, class CV>
   detail::NoStart prepare_program(const BV& b, const CV& c, stream_t stream) {
@@ -350,7 +350,7 @@ class Accumulator<Atomic, Device, T> {
   // After prepare(): the rotation over b's velocities.
   template <class BV>
   detail::AtomicRotation<T> rotation(const BV& b) {
-    detail::ensure_size(copy_, b.size(), 6);
+    gpusolve::detail::ensure_size(copy_, b.size(), 6);
     const auto c = copy_.view();
     return {b.v, b.w, {c.ptr, b.size(), 3, c.pitch}, {c.ptr + 3 * c.pitch, b.size(), 3, c.pitch}, sums()};
   }

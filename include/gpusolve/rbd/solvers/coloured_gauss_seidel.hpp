@@ -10,13 +10,13 @@
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/contacts/contact_colouring.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/container/ensure_size.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
 #include "gpusolve/rbd/solvers/contact_solver_base.hpp"
 #include "gpusolve/rbd/solvers/convergence.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
 #include "gpusolve/rbd/solvers/solver.hpp"
-#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {

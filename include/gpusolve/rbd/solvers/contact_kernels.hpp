@@ -16,25 +16,15 @@ namespace gpusolve::rbd {
 
 namespace detail {
 
-template <class T, class V>
-GPUSOLVE_HD math::Vector3<T> load3(const V& v, std::size_t i) {
-  return math::Vector3<T>(v(i, 0), v(i, 1), v(i, 2));
-}
-template <class T, class V>
-GPUSOLVE_HD math::Matrix3x3<T> load9(const V& v, std::size_t i) {
-  return math::Matrix3x3<T>(v(i, 0), v(i, 1), v(i, 2), v(i, 3), v(i, 4), v(i, 5), v(i, 6), v(i, 7),
-                            v(i, 8));
-}
-
 // The contact frame: row 0 is n, rows 1 and 2 (models with friction) t and o.
 template <class T, class Model, class CV>
 struct Frame {
   math::Vector3<T> q[Model::rows];
   GPUSOLVE_HD Frame(const CV& c, std::size_t i) {
-    q[0] = load3<T>(c.n, i);
+    q[0] = math::load3<T>(c.n, i);
     if constexpr (Model::rows == 3) {
-      q[1] = load3<T>(c.t, i);
-      q[2] = load3<T>(c.o, i);
+      q[1] = math::load3<T>(c.t, i);
+      q[2] = math::load3<T>(c.o, i);
     }
   }
   // Q x: the impulse in world coordinates.
@@ -67,8 +57,8 @@ struct ContactBodies {
   template <class BV, class CV>
   GPUSOLVE_HD ContactBodies(const BV& b, const CV& c, std::size_t i)
       : ia(c.a[i]), ib(c.b[i]), move_a(b.moving(ia)), move_b(b.moving(ib)), ma(b.inv_mass[ia]),
-        mb(b.inv_mass[ib]), ra(load3<T>(c.ra, i)), rb(load3<T>(c.rb, i)), Ia(load9<T>(b.inv_inertia, ia)),
-        Ib(load9<T>(b.inv_inertia, ib)) {}
+        mb(b.inv_mass[ib]), ra(math::load3<T>(c.ra, i)), rb(math::load3<T>(c.rb, i)), Ia(math::load9<T>(b.inv_inertia, ia)),
+        Ib(math::load9<T>(b.inv_inertia, ib)) {}
 };
 
 // The velocity changes of a contact's two bodies caused by impulse p (world
@@ -89,10 +79,10 @@ struct BodyResponse {
   // kernel 103 registers instead of 80.
   template <class BV, class CV>
   GPUSOLVE_HD BodyResponse(const BV& b, const CV& c, std::size_t i, const math::Vector3<T>& p)
-      : ia(c.a[i]), ib(c.b[i]), move_a(b.moving(ia)), move_b(b.moving(ib)), ra(load3<T>(c.ra, i)),
-        rb(load3<T>(c.rb, i)) {
-    dva = b.inv_mass[ia] * p, dwa = load9<T>(b.inv_inertia, ia) * (ra % p);
-    dvb = -(b.inv_mass[ib] * p), dwb = -(load9<T>(b.inv_inertia, ib) * (rb % p));
+      : ia(c.a[i]), ib(c.b[i]), move_a(b.moving(ia)), move_b(b.moving(ib)), ra(math::load3<T>(c.ra, i)),
+        rb(math::load3<T>(c.rb, i)) {
+    dva = b.inv_mass[ia] * p, dwa = math::load9<T>(b.inv_inertia, ia) * (ra % p);
+    dvb = -(b.inv_mass[ib] * p), dwb = -(math::load9<T>(b.inv_inertia, ib) * (rb % p));
   }
   // Hands contact i's changes to the sink: Sink::add(i, response) applies or
   // records those of the moving bodies.
@@ -150,12 +140,12 @@ struct InverseBlocks {
     constexpr std::size_t R = Model::rows;
     const detail::Frame<T, Model, CV> f(c, i);
     const std::uint32_t ids[2] = {c.a[i], c.b[i]};
-    const math::Vector3<T> rs[2] = {detail::load3<T>(c.ra, i), detail::load3<T>(c.rb, i)};
+    const math::Vector3<T> rs[2] = {math::load3<T>(c.ra, i), math::load3<T>(c.rb, i)};
     T W[R][R] = {};
     for (int s = 0; s < 2; ++s) {
       const std::uint32_t k = ids[s];
       const T im = b.inv_mass[k];
-      const math::Matrix3x3<T> Iinv = detail::load9<T>(b.inv_inertia, k);
+      const math::Matrix3x3<T> Iinv = math::load9<T>(b.inv_inertia, k);
       for (std::size_t col = 0; col < R; ++col) {
         const math::Vector3<T> Kq = im * f.q[col] + (Iinv * (rs[s] % f.q[col])) % rs[s];
         for (std::size_t row = 0; row < R; ++row) W[row][col] += math::dot(f.q[row], Kq);
@@ -199,8 +189,8 @@ struct CalcNextPhi {
     math::Vector3<T> va, wa, vb, wb;
     it.velocity(b, ia, va, wa);
     it.velocity(b, ib, vb, wb);
-    const math::Vector3<T> du = detail::point_velocity(va, wa, detail::load3<T>(c.ra, i)) -
-                                detail::point_velocity(vb, wb, detail::load3<T>(c.rb, i));
+    const math::Vector3<T> du = detail::point_velocity(va, wa, math::load3<T>(c.ra, i)) -
+                                detail::point_velocity(vb, wb, math::load3<T>(c.rb, i));
     for (std::size_t r = 0; r < Model::rows; ++r) e[r] = math::dot(f.q[r], du);
     const T phi0 = c.phi0[i];
     e[0] += (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;

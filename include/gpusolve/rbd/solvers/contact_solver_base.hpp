@@ -8,11 +8,11 @@
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/container/ensure_size.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
 #include "gpusolve/rbd/solvers/convergence.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
-#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {
@@ -42,7 +42,7 @@ class ContactSolverBase {
     s.validate();
     stats.contacts = c.bound();
     if (c.bound() == 0) return false;
-    detail::ensure_size(residual_, c.bound());
+    gpusolve::detail::ensure_size(residual_, c.bound());
     return true;
   }
   InverseBlocks<Model, BV, CV, T> inverse_blocks(const BV& b, const CV& c) const { return {b, c}; }

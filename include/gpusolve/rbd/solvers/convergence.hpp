@@ -10,9 +10,11 @@
 
 #include "gpusolve/container/vector_view.hpp"
 #include "gpusolve/core/config.hpp"
-#include "gpusolve/rbd/detail/extent.hpp"
-#include "gpusolve/rbd/detail/reduce.hpp"
-#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/contacts/extent.hpp"
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/rbd/execution/backend.hpp"
+#include "gpusolve/rbd/execution/device_algorithms.hpp"
+#include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {
@@ -53,18 +55,23 @@ class ResidualCheck {
   template <class BV>
   T operator()(const BV& b, VectorD1View<T> residual, std::size_t contacts, stream_t stream = stream_t{}) {
     const std::size_t n = contacts > b.size() ? contacts : b.size();
-    return reduce_(n, detail::ResidualOrNotFinite<BV, T>{b, residual, {contacts}}, T(0), stream);
+    if (out_.size_x() == 0) out_.resize(1);
+    algorithms_.reduce_into(n, detail::ResidualOrNotFinite<BV, T>{b, residual, {contacts}}, T(0), detail::MaxOp{},
+                            out_.data(), stream);
+    return detail::read_back<Device>(out_.data(), 0, stream);
   }
-  std::size_t scratch_bytes() const { return reduce_.scratch_bytes(); }
+  // Bytes of temporary storage held (GPU only; stays put once warm).
+  std::size_t scratch_bytes() const { return algorithms_.scratch_bytes(); }
 
  private:
-  MaxReducer<Device, T> reduce_;
+  detail::DeviceAlgorithms<Device> algorithms_;
+  VectorD1<T, device_is<Device>> out_;  // the reduction's result slot
 };
 
 // The stopping and divergence rules of the residual checks, as plain data: the
 // host applies them between runs of iterations (ConvergenceMonitor), and a
 // persistent kernel applies the same rules itself, every thread reaching the
-// same verdict from the same reduced residual (detail/persistent_loop.hpp), so
+// same verdict from the same reduced residual (execution/persistent_loop.hpp), so
 // its run of checks needs no host round trip.
 template <class T>
 struct ConvergenceRule {

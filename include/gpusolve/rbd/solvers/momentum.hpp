@@ -8,9 +8,9 @@
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/config.hpp"
-#include "gpusolve/rbd/detail/extent.hpp"
-#include "gpusolve/rbd/detail/persistent_loop.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/contacts/extent.hpp"
+#include "gpusolve/rbd/execution/persistent_loop.hpp"
+#include "gpusolve/container/ensure_size.hpp"
 #include "gpusolve/rbd/solvers/iterate.hpp"
 
 namespace gpusolve::rbd {
@@ -203,10 +203,10 @@ class Momentum<Nesterov, Device, T> {
  public:
   template <class BV, class CV>
   void begin(const BV& b, const CV& c) {
-    detail::ensure_size(px_, c.bound(), c.x.size_y());
-    detail::ensure_size(pv_, b.size(), 3);
-    detail::ensure_size(pw_, b.size(), 3);
-    detail::ensure_size(uphill_, c.bound());
+    gpusolve::detail::ensure_size(px_, c.bound(), c.x.size_y());
+    gpusolve::detail::ensure_size(pv_, b.size(), 3);
+    gpusolve::detail::ensure_size(pw_, b.size(), 3);
+    gpusolve::detail::ensure_size(uphill_, c.bound());
     if (state_.size_x() == 0) state_.resize(detail::momentum_slots);
     contacts_ = c.count;
   }

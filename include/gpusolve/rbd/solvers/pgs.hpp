@@ -14,7 +14,7 @@
 #include "gpusolve/rbd/contacts/contacts.hpp"
 #include "gpusolve/rbd/solvers/convergence.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
-#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {

@@ -8,8 +8,8 @@
 #include "gpusolve/container/vector_view.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
-#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/container/ensure_size.hpp"
+#include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {
@@ -48,7 +48,7 @@ class VelocitySnapshot {
   }
   template <class BV>
   void reserve(const BV& b) {
-    detail::ensure_size(v_, b.size(), 3), detail::ensure_size(w_, b.size(), 3);
+    gpusolve::detail::ensure_size(v_, b.size(), 3), gpusolve::detail::ensure_size(w_, b.size(), 3);
   }
   template <class BV>
   detail::CopyVelocities<BV, T> saver(const BV& b) {

@@ -10,7 +10,7 @@
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
-#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {

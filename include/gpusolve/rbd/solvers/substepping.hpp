@@ -14,7 +14,7 @@
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
 #include "gpusolve/rbd/solvers/jacobi.hpp"
 #include "gpusolve/rbd/solvers/solver.hpp"
-#include "gpusolve/rbd/solvers/solver_settings.hpp"
+#include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 
 namespace gpusolve::rbd {
@@ -32,8 +32,8 @@ struct AdvanceGap {
   T h;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     const std::uint32_t ia = c.a[i], ib = c.b[i];
-    const math::Vector3<T> dv = load3<T>(b.v, ia) - load3<T>(b.v, ib);
-    c.phi0[i] += h * math::dot(load3<T>(c.n, i), dv);
+    const math::Vector3<T> dv = math::load3<T>(b.v, ia) - math::load3<T>(b.v, ib);
+    c.phi0[i] += h * math::dot(math::load3<T>(c.n, i), dv);
   }
 };
 

@@ -15,8 +15,8 @@
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/collision/broad_phase.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
-#include "gpusolve/rbd/detail/extent.hpp"
-#include "gpusolve/rbd/detail/scratch.hpp"
+#include "gpusolve/rbd/contacts/extent.hpp"
+#include "gpusolve/container/ensure_size.hpp"
 
 namespace gpusolve::rbd {
 
@@ -136,9 +136,9 @@ class WarmStart {
   detail::RememberImpulse<Model, CV, T> rememberer(const CV& c, bool on = true) {
     count_ = on ? c.bound() : 0;
     if (count_ != 0) {
-      detail::ensure_size(keys_, count_);
-      detail::ensure_size(p_, count_, Model::rows);
-      detail::ensure_size(live_, 1);
+      gpusolve::detail::ensure_size(keys_, count_);
+      gpusolve::detail::ensure_size(p_, count_, Model::rows);
+      gpusolve::detail::ensure_size(live_, 1);
     }
     return {c, keys_.data(), p_.view(), live_.data()};
   }

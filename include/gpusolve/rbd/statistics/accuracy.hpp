@@ -7,8 +7,7 @@
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
-#include "gpusolve/rbd/solvers/contact_kernels.hpp"
-#include "gpusolve/rbd/detail/device_algorithms.hpp"
+#include "gpusolve/rbd/execution/device_algorithms.hpp"
 
 namespace gpusolve::rbd {
 
@@ -43,9 +42,9 @@ struct KineticEnergy {
   BV b;
   GPUSOLVE_HD T operator()(std::size_t k) const {
     if (!b.moving(k)) return T(0);
-    const math::Vector3<T> v = load3<T>(b.v, k);
-    const math::Vector3<T> wb = math::transpose(load9<T>(b.R, k)) * load3<T>(b.w, k);
-    const math::Vector3<T> Iw = load9<T>(b.inertia, k) * wb;
+    const math::Vector3<T> v = math::load3<T>(b.v, k);
+    const math::Vector3<T> wb = math::transpose(math::load9<T>(b.R, k)) * math::load3<T>(b.w, k);
+    const math::Vector3<T> Iw = math::load9<T>(b.inertia, k) * wb;
     return T(0.5) * (math::dot(v, v) / b.inv_mass[k] + math::dot(wb, Iw));
   }
 };
@@ -57,7 +56,7 @@ struct PotentialEnergy {
   math::Vector3<T> g;
   GPUSOLVE_HD T operator()(std::size_t k) const {
     if (!b.moving(k)) return T(0);
-    return -math::dot(g, load3<T>(b.pos, k)) / b.inv_mass[k];
+    return -math::dot(g, math::load3<T>(b.pos, k)) / b.inv_mass[k];
   }
 };
 

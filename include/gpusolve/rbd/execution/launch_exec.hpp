@@ -7,7 +7,7 @@
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/rbd/detail/device_algorithms.hpp"
+#include "gpusolve/rbd/execution/device_algorithms.hpp"
 
 namespace gpusolve::rbd::detail {
 

@@ -29,9 +29,10 @@
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
+#include "gpusolve/core/device_facts.hpp"
 #include "gpusolve/core/error.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/rbd/detail/device_algorithms.hpp"
+#include "gpusolve/rbd/execution/device_algorithms.hpp"
 
 #if GPUSOLVE_HAS_NVCC
 #include <cooperative_groups.h>
@@ -238,13 +239,11 @@ class PersistentLoop {
  public:
   static bool available() {
     if constexpr (std::is_same_v<Device, device::gpu> && GPUSOLVE_HAS_NVCC) {
-      static const bool ok = [] {
-        int dev = 0, coop = 0;
-        GPUSOLVE_CUDA_CHECK(cudaGetDevice(&dev));
-        GPUSOLVE_CUDA_CHECK(cudaDeviceGetAttribute(&coop, cudaDevAttrCooperativeLaunch, dev));
-        return coop != 0;
-      }();
-      return ok;
+      return gpusolve::detail::per_device([](int dev) {
+               int coop = 0;
+               GPUSOLVE_CUDA_CHECK(cudaDeviceGetAttribute(&coop, cudaDevAttrCooperativeLaunch, dev));
+               return coop != 0 ? 1 : 0;
+             }) != 0;
     } else {
       return false;
     }
@@ -322,12 +321,13 @@ class PersistentLoop {
   template <class GridKernel, class ClusterKernel>
   void launch_persistent(GridKernel* grid, ClusterKernel* clustered, std::size_t width, void** args, T*& partials,
                          std::uint32_t*& scan_totals, stream_t stream) {
-    static const int per_sm = [grid] {
+    const int per_sm = gpusolve::detail::per_device([grid](int) {
       int blocks = 0;
       GPUSOLVE_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks, grid, persistent_block_size, 0));
       return blocks;
-    }();
-    static const std::size_t cluster_max = largest_cluster(clustered);
+    });
+    const std::size_t cluster_max =
+        std::size_t(gpusolve::detail::per_device([clustered](int dev) { return largest_cluster(clustered, dev); }));
     if (per_sm == 0)
       throw UnsupportedError("gpusolve: the persistent solver kernel does not fit on one multiprocessor");
     const std::size_t wanted = (width + persistent_block_size - 1) / persistent_block_size;
@@ -357,9 +357,8 @@ class PersistentLoop {
   // The most blocks of `kernel` that run as one cluster here: 0 where none
   // can (a device before sm_90, or the kernel's binary built for one).
   template <class Kernel>
-  static std::size_t largest_cluster(Kernel* kernel) {
-    int dev = 0, supported = 0;
-    GPUSOLVE_CUDA_CHECK(cudaGetDevice(&dev));
+  static int largest_cluster(Kernel* kernel, int dev) {
+    int supported = 0;
     GPUSOLVE_CUDA_CHECK(cudaDeviceGetAttribute(&supported, cudaDevAttrClusterLaunch, dev));
     cudaFuncAttributes attributes{};
     GPUSOLVE_CUDA_CHECK(cudaFuncGetAttributes(&attributes, reinterpret_cast<const void*>(kernel)));
@@ -370,7 +369,7 @@ class PersistentLoop {
     config.gridDim = dim3(persistent_max_cluster), config.blockDim = dim3(persistent_block_size);
     int size = 0;
     GPUSOLVE_CUDA_CHECK(cudaOccupancyMaxPotentialClusterSize(&size, reinterpret_cast<const void*>(kernel), &config));
-    return size < int(persistent_max_cluster) ? std::size_t(size) : std::size_t(persistent_max_cluster);
+    return size < int(persistent_max_cluster) ? size : int(persistent_max_cluster);
   }
 #endif
 

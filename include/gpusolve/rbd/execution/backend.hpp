@@ -1,5 +1,5 @@
-// The Thrust execution policy and scalar read-back of each backend, for the
-// sort/scan/search steps of collision detection.
+// Each backend's Thrust execution policy (the contact colouring's sort and
+// search) and read_back(), the one way the host reads a value the backend wrote.
 #pragma once
 
 // thrust::host algorithms compile with a plain C++ compiler (g++ with the CCCL

@@ -1,9 +1,9 @@
-// Scratch storage of the rbd kernels: vectors that only grow, reused step to step.
+// ensure_size(): storage that only grows, reused from step to step (scratch of the rbd kernels).
 #pragma once
 
 #include <cstddef>
 
-namespace gpusolve::rbd::detail {
+namespace gpusolve::detail {
 
 // Grows a VectorD1 to at least n elements, by half again so that slowly growing
 // sizes do not reallocate every step. Returns whether it reallocated (contents
@@ -23,4 +23,4 @@ bool ensure_size(V& v, std::size_t n, std::size_t rows) {
   return true;
 }
 
-}  // namespace gpusolve::rbd::detail
+}  // namespace gpusolve::detail

@@ -5,7 +5,7 @@
 
 #include "gpusolve/container/vector_view.hpp"
 
-namespace gpusolve::rbd::detail {
+namespace gpusolve::detail {
 
 // Bodies and Contacts keep storage beyond their size; kernels see `n` entries.
 // A field that was never allocated (a model without it) stays empty.
@@ -20,4 +20,4 @@ VectorD2View<T, Check> logical(VectorD2View<T, Check> v, std::size_t n) {
   return v;
 }
 
-}  // namespace gpusolve::rbd::detail
+}  // namespace gpusolve::detail

@@ -1,0 +1,29 @@
+// ContactSettings: how contacts are generated and what they carry: the margin
+// within which a gap becomes a contact, the share of a penetration corrected
+// per step, the friction coefficient.
+#pragma once
+
+#include <cmath>
+
+#include "gpusolve/rbd/settings/setting_error.hpp"
+
+namespace gpusolve::rbd {
+
+template <class T>
+struct ContactSettings {
+  // A contact is kept while its gap is below the margin (m): a body moving up to
+  // about a margin per step is caught before it sinks in. Scale it with the
+  // scene; the default is a tenth of a unit radius (docs/tuning/contacts.md).
+  T margin = T(0.1);
+  T correction = T(0.2);  // fraction of a penetration removed per step, in (0, 1]
+  T friction = T(0.5);    // friction coefficient of every contact (models with friction)
+
+  // Throws InvalidArgumentError naming the first offending field.
+  void validate() const {
+    if (!(margin >= 0) || !std::isfinite(margin)) detail::bad_setting("margin", "must be non-negative and finite");
+    if (!(correction > 0 && correction <= 1)) detail::bad_setting("correction", "must lie in (0, 1]");
+    if (!(friction >= 0) || !std::isfinite(friction)) detail::bad_setting("friction", "must be non-negative and finite");
+  }
+};
+
+}  // namespace gpusolve::rbd
