@@ -76,10 +76,8 @@ class DeviceAlgorithms {
 
   // *out = init op f(0) op ... op f(n - 1), left in the backend's memory. On
   // the GPU a kernel one thread per index writes f(i) into a kept buffer and
-  // CUB reduces that: with f fused into CUB's reduction a few blocks evaluate
-  // many indices per thread, one after another, and reductions of the bodies'
-  // state (10 000 bodies) took 40 to 50 us each on an H200 (ncu), most of a
-  // step's reductions.
+  // CUB reduces that: fused into CUB's reduction, f ran on a few blocks, many
+  // indices per thread, one after another (docs/tuning/execution.md).
   template <class F, class T, class Op>
   void reduce_into(std::size_t n, F f, T init, Op op, T* out, stream_t stream) {
     if constexpr (gpu) {

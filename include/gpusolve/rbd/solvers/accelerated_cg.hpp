@@ -26,11 +26,9 @@
 // check. An iteration that measures the residual takes no momentum (beta 0), so
 // the impulses it leaves lie in their cones and agree with the velocities: the
 // solve may stop there. Scalars stay in the backend's memory; the host reads
-// only the residual at checks. On the CPU a column of ten spheres with masses
-// alternating 1 and 1000 (tolerance 5e-3, check_every 10, tests/host/
-// test_rbd_methods.cpp) converges in 10 iterations per step, where APGD takes
-// 186; on a 1 000-sphere pile at the defaults the prototype took slightly fewer
-// iterations than APGD, each costing about 2.25 of APGD's. ConeFriction only.
+// only the residual at checks. It is for mass ratios APGD converges slowly on
+// (a 1:1000 column, tests/host/test_rbd_methods.cpp; docs/tuning/solve.md).
+// ConeFriction only.
 #pragma once
 
 #include <cmath>

@@ -21,11 +21,8 @@ namespace gpusolve::rbd::detail {
 //  - bodies_first: whether JacobiContact loads the contact's bodies (masses,
 //    inertias) before the error rather than after the impulse. Early, they
 //    share the velocities' round trip to memory instead of taking one of their
-//    own: the pyramid model's persistent Atomic iteration at 26 116 contacts
-//    4.3 against 5.0 us, plain Jacobi's solve at 100 000 spheres 0.47 against
-//    0.51 ms (bench/results/step/checks/body_loads_*). An extrapolating
-//    iterate keeps them late: with its own loads, early made APGD's steps at
-//    100 000 spheres 4% slower.
+//    own; an extrapolating iterate, with loads of its own, keeps them late
+//    (docs/tuning/solve.md).
 // CurrentIterate is the plain one: the impulses and velocities as they are.
 // A momentum method extrapolates instead (momentum.hpp, ExtrapolatedIterate),
 // without a pass of its own over impulses and velocities.

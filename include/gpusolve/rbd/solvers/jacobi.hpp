@@ -214,7 +214,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
  public:
   // Undamped Jacobi diverges on piles (thesis 5.2). With momentum the step must
   // stay below 1 / (the largest eigenvalue of Dinv N), which a close-packed pile
-  // pushes towards 3: 0.3 converged on the piles and columns of the atlas.
+  // pushes towards 3 (docs/tuning/solve.md).
   static constexpr double default_omega = std::is_same_v<MomentumTag, Nesterov> ? 0.3 : 0.5;
   using typename Base::BodyStore;
   using typename Base::BV;
@@ -258,76 +258,102 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   void hold_while(const std::uint32_t* hold) { hold_ = hold; }
 
  private:
-  // Queues the solve (solve(), solve_queued()). Returns true when it left its
-  // verdict in `slot` for verdict() without waiting (`deferred` and the
-  // persistent kernel); else `stats` is complete.
+  using Sink = decltype(std::declval<Accumulator<Strategy, Device, T>&>().sink());
+  // Atomic without momentum runs an iteration as one phase (RotatedJacobiIteration).
+  static constexpr bool rotated = std::is_same_v<Strategy, Atomic> && std::is_same_v<MomentumTag, NoMomentum>;
+
+  // Queues the solve (solve(), solve_queued()) in its stages: prepare, then
+  // per attempt its start, runs of iterations and their residual checks, and
+  // the verdict. Returns true when it left its verdict in `slot` for verdict()
+  // without waiting (`deferred` and the persistent kernel); else `stats` is complete.
   bool queue(BodyStore& bodies, ContactStore& contacts, const SolverSettings<T>& s, stream_t stream, bool from_x,
              std::size_t slot, bool deferred, SolverStats<T>& stats) {
     const BV b = bodies.view();
     CV c = contacts.view();
     const bool persistent = contacts.expected_size() <= s.persistent_max_contacts && persistent_.available();
-    if (c.count.live != nullptr && (!persistent || std::is_same_v<Strategy, UpdateCache>)) {
-      // A launched solve checks on the host, and the update cache's passes
-      // are counted there: the host reads the hold and the count.
-      if (hold_ != nullptr && detail::read_back<Device>(hold_, 0, stream) != 0) return false;
-      const std::size_t live = detail::read_back<Device>(c.count.live, 0, stream);
-      c.count = {live < c.bound() ? live : c.bound(), nullptr};
-    }
+    if (!count_on_host(c, persistent, stream)) return false;  // held
     if (!this->prepare(c, s, stats)) return false;
-    // The persistent kernel's grid is sized for the count the host expects,
-    // a sixteenth more: its phases stride over whatever count the device
-    // holds, but a grid short of it gives threads a second contact and the
-    // iteration twice the phase (under ncu on the 10 000-sphere pile the
-    // kernel took 0.54 to 0.60 ms instead of 0.45 while the count outgrew it).
-    // A sixteenth measured as fast as an eighth or faster in every mode, a
-    // thirty-second slower (bench/results/step/unattended).
-    const std::size_t expected = contacts.expected_size() + contacts.expected_size() / 16;
-    const std::size_t nc = c.count.live != nullptr ? (expected < c.bound() ? expected : c.bound()) : c.bound();
-    const std::size_t width = nc > b.size() ? nc : b.size();
-    const detail::LaunchExec<Device, T> launched{stream, &algorithms_};
+    const std::size_t width = grid_width(contacts, b, c);
     // The accumulator's preparation (Gather: the grouping's build) runs as the
     // persistent kernel's first phases, or is launched here.
     const auto prepared = acc_.prepare_program(b, c, stream);
-    if (!persistent) prepared(launched);
+    if (!persistent) prepared(launched(stream));
     stats.reduction_passes = acc_.passes();
+    prepare_iterations(b, c, s, width, stream);
+    const auto iteration = iteration_program(b, c, s);
+    if (!from_x) contacts.x.fill(T(0), stream);
+    if (persistent) return solve_persistent(b, c, s, prepared, iteration, from_x, width, slot, deferred, stream, stats);
+    solve_launched(b, c, contacts, s, prepared, iteration, from_x, stream, stats);
+    return false;
+  }
+
+  // Where the contacts' count is on the device, a launched solve (and the
+  // update cache, whose passes are counted on the host) reads it, and the hold,
+  // on the host. Returns false for a held step.
+  bool count_on_host(CV& c, bool persistent, stream_t stream) const {
+    if (c.count.live == nullptr || (persistent && !std::is_same_v<Strategy, UpdateCache>)) return true;
+    if (hold_ != nullptr && detail::read_back<Device>(hold_, 0, stream) != 0) return false;
+    const std::size_t live = detail::read_back<Device>(c.count.live, 0, stream);
+    c.count = {live < c.bound() ? live : c.bound(), nullptr};
+    return true;
+  }
+
+  // The persistent grid's width: the contacts the host expects, a sixteenth
+  // more (its phases stride over whatever count the device holds, but a grid
+  // short of it gives threads a second contact; docs/tuning/execution.md), or the bodies.
+  static std::size_t grid_width(const ContactStore& contacts, const BV& b, const CV& c) {
+    const std::size_t expected = contacts.expected_size() + contacts.expected_size() / 16;
+    const std::size_t nc = c.count.live != nullptr ? (expected < c.bound() ? expected : c.bound()) : c.bound();
+    return nc > b.size() ? nc : b.size();
+  }
+
+  // What every run of iterations needs before it starts: the momentum's
+  // state, the residual's slot, the reductions' storage, the blocks' scale.
+  void prepare_iterations(const BV& b, const CV& c, const SolverSettings<T>& s, std::size_t width, stream_t stream) {
     momentum_.begin(b, c);
     if (residual_out_.size_x() == 0) residual_out_.resize(1);
-    T* const residual_out = residual_out_.data();
-    const auto terms = this->residual_terms(b, c);
     if (s.graphs) {  // a capture may not grow the reductions' buffers (the first node would keep the old one)
-      algorithms_.reserve_reduce(width, terms, T(0), detail::MaxOp{}, residual_out);
-      algorithms_.reserve_reduce(width, terms, T(0), detail::PlusOp{}, residual_out);
+      const auto terms = this->residual_terms(b, c);
+      algorithms_.reserve_reduce(width, terms, T(0), detail::MaxOp{}, residual_out_.data());
+      algorithms_.reserve_reduce(width, terms, T(0), detail::PlusOp{}, residual_out_.data());
     }
     if (scale_.size_x() == 0) {
       scale_.resize(1);
       scale_.fill(T(1), stream);
     }
+  }
 
-    using Sink = decltype(acc_.sink());
-    // Atomic without momentum runs an iteration as one phase (RotatedJacobiIteration).
-    constexpr bool rotated = std::is_same_v<Strategy, Atomic> && std::is_same_v<MomentumTag, NoMomentum>;
+  detail::LaunchExec<Device, T> launched(stream_t stream) { return {stream, &algorithms_}; }
+
+  // The start of the first attempt (in the kernel, the accumulator's
+  // preparation first; the copy of the velocities for a retry; the warm start)
+  // or of a retry (cold).
+  template <class Prepared>
+  auto attempt_start(const BV& b, const CV& c, const SolverSettings<T>& s, const Prepared& prepared, bool persistent,
+                     bool first_attempt, bool from_x) {
+    return detail::AttemptStart<Prepared, detail::CopyVelocities<BV, T>, InverseBlocks<Model, BV, CV, T>,
+                                ApplyImpulses<Model, BV, CV, Sink, T>, decltype(acc_.program(b)),
+                                decltype(momentum_.start(b, c))>{prepared,
+                                                                 this->start_.saver(b),
+                                                                 {b, c, scale_.data()},
+                                                                 {b, c, acc_.sink()},
+                                                                 acc_.program(b),
+                                                                 momentum_.start(b, c),
+                                                                 persistent && first_attempt,
+                                                                 first_attempt && s.max_retries > 0,
+                                                                 from_x && first_attempt};
+  }
+
+  // One iteration as a program (JacobiIteration, or RotatedJacobiIteration):
+  // every attempt iterates at the first attempt's omega; a retry's smaller
+  // omega scales the inverse blocks instead (InverseBlocks::scale), so that
+  // the persistent kernel retries with the iteration it holds.
+  auto iteration_program(const BV& b, const CV& c, const SolverSettings<T>& s) {
+    const T omega = omega_of<JacobiSolver>(s);
     const VectorD2View<T> rhs{};  // JacobiContact keeps each error in registers: no store
     const auto residual = this->residual_.view();
-    // Every attempt iterates at the first attempt's omega; a retry's smaller
-    // omega scales the inverse blocks instead (InverseBlocks::scale), so that
-    // the persistent kernel retries with the iteration it holds.
-    const T omega = omega_of<JacobiSolver>(s);
-    // The start of the first attempt (in the kernel with the accumulator's
-    // preparation; the copy for a retry; the warm start) or of a retry (cold).
-    auto attempt_start = [&](bool first_attempt) {
-      return detail::AttemptStart<std::remove_const_t<decltype(prepared)>, detail::CopyVelocities<BV, T>,
-                                  InverseBlocks<Model, BV, CV, T>, ApplyImpulses<Model, BV, CV, Sink, T>,
-                                  decltype(acc_.program(b)), decltype(momentum_.start(b, c))>{
-          prepared,
-          this->start_.saver(b),
-          {b, c, scale_.data()},
-          {b, c, acc_.sink()},
-          acc_.program(b),
-          momentum_.start(b, c),
-          persistent && first_attempt,
-          first_attempt && s.max_retries > 0,
-          from_x && first_attempt};
-    };
+    const auto terms = this->residual_terms(b, c);
+    T* const residual_out = residual_out_.data();
     // The iteration's contact functors, plain and measuring, for a sink and an iterate.
     auto contact_pair = [&](const auto& sink, const auto& look) {
       using Contact = JacobiContact<Model, BV, CV, std::decay_t<decltype(sink)>, T, std::decay_t<decltype(look)>>;
@@ -336,56 +362,66 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       measuring.resolve.measure = true;
       return std::pair<Contact, Contact>{plain, measuring};
     };
-    const auto iteration = [&] {
-      if constexpr (rotated) {
-        const auto r = acc_.rotation(b);
-        const auto [plain, measuring] = contact_pair(r.sink(1), r.iterate(1));
-        return detail::RotatedJacobiIteration<std::decay_t<decltype(plain)>, decltype(terms), T>{
-            plain, measuring, r, b.size(), terms, residual_out};
-      } else {
-        const auto look = momentum_.iterate();
-        const auto [plain, measuring] = contact_pair(acc_.sink(), look);
-        return detail::JacobiIteration<std::decay_t<decltype(plain)>, decltype(acc_.program(b, look)),
-                                       decltype(momentum_.program()), decltype(terms), T>{
-            plain, measuring, acc_.program(b, look), momentum_.program(), terms, residual_out};
-      }
-    }();
-    if (!from_x) contacts.x.fill(T(0), stream);
-
-    if (persistent) {  // checks and retries run in the kernel: the host waits for its verdict at most
-      if (s.max_retries > 0) this->start_.reserve(b);
-      if (!scale_is_one_) scale_.fill(T(1), stream);
-      scale_is_one_ = true;  // the kernel leaves it 1
-      const auto between = [&] {
-        if constexpr (std::is_same_v<MomentumTag, NoMomentum>)
-          return detail::NoStart{};
-        else
-          return detail::BetweenRuns<decltype(momentum_.program())>{momentum_.program()};
-      }();
-      const ConvergenceRule<T> rule(s);
-      if (records_.size() == 0) records_ = HostBuffer<Record>(2);
-      if (histories_[slot].size() < rule.max_checks()) histories_[slot] = HostBuffer<T>(rule.max_checks());
-      omegas_[slot] = omega, retry_factors_[slot] = s.retry_omega_factor;
-      persistent_.set_clusters(s.persistent_clusters);
-      persistent_.run_checked(attempt_start(true), iteration, between, rule,
-                              detail::RetryRule<T>{s.retry_omega_factor, s.max_retries, scale_.data()}, residual_out,
-                              records_.data() + slot, histories_[slot].data(), width, stream,
-                              c.count.live != nullptr ? hold_ : nullptr);
-      if (!deferred) {
-        done_.mark(0, stream);
-        done_.wait(0);
-        verdict(slot, stats);
-        report_divergence(s, stats);
-      }
-      return deferred;
+    if constexpr (rotated) {
+      const auto r = acc_.rotation(b);
+      const auto [plain, measuring] = contact_pair(r.sink(1), r.iterate(1));
+      return detail::RotatedJacobiIteration<std::decay_t<decltype(plain)>, decltype(terms), T>{
+          plain, measuring, r, b.size(), terms, residual_out};
+    } else {
+      const auto look = momentum_.iterate();
+      const auto [plain, measuring] = contact_pair(acc_.sink(), look);
+      return detail::JacobiIteration<std::decay_t<decltype(plain)>, decltype(acc_.program(b, look)),
+                                     decltype(momentum_.program()), decltype(terms), T>{
+          plain, measuring, acc_.program(b, look), momentum_.program(), terms, residual_out};
     }
+  }
 
+  // The whole solve as one kernel: checks and retries run in it, and the host
+  // waits for its verdict at most (not at all when `deferred`).
+  template <class Prepared, class Iteration>
+  bool solve_persistent(const BV& b, const CV& c, const SolverSettings<T>& s, const Prepared& prepared,
+                        const Iteration& iteration, bool from_x, std::size_t width, std::size_t slot, bool deferred,
+                        stream_t stream, SolverStats<T>& stats) {
+    if (s.max_retries > 0) this->start_.reserve(b);
+    if (!scale_is_one_) scale_.fill(T(1), stream);
+    scale_is_one_ = true;  // the kernel leaves it 1
+    const auto between = [&] {
+      if constexpr (std::is_same_v<MomentumTag, NoMomentum>)
+        return detail::NoStart{};
+      else
+        return detail::BetweenRuns<decltype(momentum_.program())>{momentum_.program()};
+    }();
+    const ConvergenceRule<T> rule(s);
+    if (records_.size() == 0) records_ = HostBuffer<Record>(2);
+    if (histories_[slot].size() < rule.max_checks()) histories_[slot] = HostBuffer<T>(rule.max_checks());
+    omegas_[slot] = omega_of<JacobiSolver>(s), retry_factors_[slot] = s.retry_omega_factor;
+    persistent_.set_clusters(s.persistent_clusters);
+    persistent_.run_checked(attempt_start(b, c, s, prepared, true, true, from_x), iteration, between, rule,
+                            detail::RetryRule<T>{s.retry_omega_factor, s.max_retries, scale_.data()},
+                            residual_out_.data(), records_.data() + slot, histories_[slot].data(), width, stream,
+                            c.count.live != nullptr ? hold_ : nullptr);
+    if (deferred) return true;
+    done_.mark(0, stream);
+    done_.wait(0);
+    verdict(slot, stats);
+    report_divergence(s, stats);
+    return false;
+  }
+
+  // The solve as launches: each attempt's start, then runs of iterations up to
+  // each residual check (replayed as a graph with `graphs`), the check read on
+  // the host; retries through solve_relaxed.
+  template <class Prepared, class Iteration>
+  void solve_launched(const BV& b, const CV& c, ContactStore& contacts, const SolverSettings<T>& s,
+                      const Prepared& prepared, const Iteration& iteration, bool from_x, stream_t stream,
+                      SolverStats<T>& stats) {
+    const T omega = omega_of<JacobiSolver>(s);
     auto attempt = [&](T attempt_omega, SolverStats<T>& st) {
       const bool first_attempt = st.retries == 0;
       if (!first_attempt) contacts.x.fill(T(0), stream);
       scale_.fill(attempt_omega / omega, stream);
       scale_is_one_ = attempt_omega == omega;
-      const auto start = attempt_start(first_attempt);
+      const auto start = attempt_start(b, c, s, prepared, false, first_attempt, from_x);
       // Iterations `first` ... `last`, the last one measuring the residual.
       auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
         const detail::LaunchExec<Device, T> e{q, &algorithms_};
@@ -394,18 +430,17 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       ConvergenceMonitor<T> monitor(s, st);
       for (std::size_t first = 1;;) {
         const std::size_t last = monitor.next_check(first);
-        if (first == 1) start(launched);  // a graph's kernels stay the same from run to run without the start's
+        if (first == 1) start(launched(stream));  // a graph's kernels stay the same from run to run without the start's
         if (s.graphs)
           graph_.run([&](stream_t q) { iterations(first, last, q); }, stream);
         else
           iterations(first, last, stream);
-        if (monitor.stop(last, detail::read_back<Device>(residual_out, 0, stream))) break;
-        momentum_.after_iteration(launched);
+        if (monitor.stop(last, detail::read_back<Device>(residual_out_.data(), 0, stream))) break;
+        momentum_.after_iteration(launched(stream));
         first = last + 1;
       }
     };
     solve_relaxed(s, omega, b, this->start_, stats, attempt, stream, true);
-    return false;
   }
 
   Accumulator<Strategy, Device, T> acc_;

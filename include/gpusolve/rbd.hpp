@@ -1,0 +1,9 @@
+// Umbrella header of the rigid-body solver: World and everything it steps,
+// and the writers of frames and statistics.
+#pragma once
+
+#include "gpusolve/rbd/io/csv_writer.hpp"
+#include "gpusolve/rbd/io/json_writer.hpp"
+#include "gpusolve/rbd/io/povray_writer.hpp"
+#include "gpusolve/rbd/io/vtk_writer.hpp"
+#include "gpusolve/rbd/world.hpp"

@@ -1,0 +1,70 @@
+// SolverSettings as four groups by concern, and the README's World example on the CPU backend.
+#include <string>
+
+#include "catch_compat.hpp"
+#include "gpusolve/rbd/world.hpp"
+
+using namespace gpusolve;
+using namespace gpusolve::rbd;
+
+namespace {
+template <class Group>
+std::string message_of(const Group& g) {
+  try {
+    g.validate();
+  } catch (const InvalidArgumentError& e) {
+    return e.what();
+  }
+  return "valid";
+}
+}  // namespace
+
+TEST_CASE("settings brace-initialise group by group and keep their defaults", "[rbd_settings]") {
+  const SolverSettings<float> s{{0.001f, {0, 0, -1.62f}}, {0.05f}, {0.4f}, {}};
+  CHECK(s.dt == 0.001f);
+  CHECK(s.gravity[2] == -1.62f);
+  CHECK(s.margin == 0.05f);
+  CHECK(s.correction == 0.2f);  // the rest of a group keeps its defaults
+  CHECK(s.omega == 0.4f);
+  CHECK(s.max_iterations == 50);
+  CHECK(s.persistent_max_contacts == 1000000);
+  CHECK_NOTHROW(s.validate());
+  // A stage that needs one concern takes its group: the same values.
+  const ContactSettings<float>& c = s.contacts();
+  CHECK(c.margin == 0.05f);
+  CHECK(s.step().dt == 0.001f);
+  CHECK(s.solve().omega == 0.4f);
+  CHECK_FALSE(s.execution().graphs);
+}
+
+TEST_CASE("each settings group validates its own fields and names them", "[rbd_settings]") {
+  StepSettings<double> step;
+  step.dt = 0;
+  CHECK(message_of(step).find("`dt`") != std::string::npos);
+  ContactSettings<double> contacts;
+  contacts.correction = 1.5;
+  CHECK(message_of(contacts).find("`correction`") != std::string::npos);
+  SolveSettings<double> solve;
+  solve.warm_start = 2;
+  CHECK(message_of(solve).find("`warm_start`") != std::string::npos);
+  CHECK(message_of(ExecutionSettings{}) == "valid");
+  SolverSettings<double> all;
+  all.friction = -1;
+  CHECK(message_of(all).find("`friction`") != std::string::npos);
+}
+
+TEST_CASE("the README's World example runs on the CPU backend", "[rbd_settings]") {
+  BodySet<float> set;
+  set.add_plane({0, 0, 1}, 0);
+  for (int i = 0; i < 64; ++i)
+    set.add_sphere({2.1f * (i % 4), 2.1f * (i / 4 % 4), 1.1f + 2.1f * (i / 16)}, 1.0f, 1.0f);
+  SolverSettings<float> settings;
+  settings.friction = 0.5f;
+  World<device::cpu> world(set, settings);
+  for (int k = 0; k < 800; ++k) world.advance();  // 2 s: the top layer (7.4 m up) has landed
+  const StepStats<float> s = world.latest_stats();
+  CHECK(s.solver.contacts >= 64);  // every sphere rests on the floor or on another
+  CHECK(s.max_penetration < 0.01f);
+  world.syncHost();
+  for (std::size_t i = 1; i < set.size(); ++i) CHECK(set[i].pos[2] > 0.98f);
+}
