@@ -36,6 +36,7 @@
 #include <cstdint>
 #include <limits>
 #include <type_traits>
+#include <utility>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
@@ -453,13 +454,8 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
     const Device dev{};
     acc_.prepare(b, c, stream);
     stats.reduction_passes = acc_.passes();
-    for (auto* v : {&rhs_, &p_, &px_, &pg_}) gpusolve::detail::ensure_size(*v, nc, Model::rows);
-    for (auto* v : {&dvp_, &dwp_, &pv_, &pw_}) gpusolve::detail::ensure_size(*v, nb, 3);
-    for (auto* v : {&rz_, &chop_, &step_, &uphill_, &descent_}) gpusolve::detail::ensure_size(*v, nc);
-    gpusolve::detail::ensure_size(pwp_, nb);
-    if (state_.size_x() == 0) state_.resize(acg::slots);
+    reserve(nc, nb);
     T* state = state_.data();
-    using Sink = decltype(acc_.sink());
     const auto rhs = rhs_.view();
     const auto residual = this->residual_.view();
     const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs, T(1) / s.dt, s.correction};
@@ -467,18 +463,7 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
       alg_.reduce_values(terms.ptr, count, T(0), detail::PlusOp{}, state + slot, stream);
     };
     auto attempt = [&](T omega, SolverStats<T>& st) {
-      if (from_x && st.retries == 0) {
-        launch(dev, nc, ApplyImpulses<Model, BV, CV, Sink, T>{b, c, acc_.sink()}, stream);
-        acc_.apply(b, stream);
-      } else {
-        contacts.x.fill(T(0), stream);
-      }
-      // No stale value may enter the first extrapolation (its beta is 0, but 0 * NaN is not 0).
-      p_.fill(T(0), stream), pg_.fill(T(0), stream);
-      launch(dev, n,
-             detail::ResetMomentum<BV, CV, T>{b, c, px_.view(), pv_.view(), pw_.view(), state + acg::momentum_slot},
-             stream);
-      launch(dev, 1, acg::ResetState<T>{state}, stream);
+      start_attempt(b, c, contacts, from_x && st.retries == 0, stream);
       const acg::Classify<Model, BV, CV, T> cl{phi, rz_.view(), chop_.view(), residual, omega};
       const acg::Direction<Model, BV, CV, Sink, T> direction{
           phi,          {b, c, rhs, acc_.sink(), omega, false, residual}, p_.view(), px_.view(), step_.view(),
@@ -517,6 +502,37 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
   }
 
  private:
+  using Sink = decltype(std::declval<Accumulator<Gather, Device, T>&>().sink());
+
+  // Scratch for nc contacts and nb bodies, kept between solves.
+  void reserve(std::size_t nc, std::size_t nb) {
+    for (auto* v : {&rhs_, &p_, &px_, &pg_}) gpusolve::detail::ensure_size(*v, nc, Model::rows);
+    for (auto* v : {&dvp_, &dwp_, &pv_, &pw_}) gpusolve::detail::ensure_size(*v, nb, 3);
+    for (auto* v : {&rz_, &chop_, &step_, &uphill_, &descent_}) gpusolve::detail::ensure_size(*v, nc);
+    gpusolve::detail::ensure_size(pwp_, nb);
+    if (state_.size_x() == 0) state_.resize(detail::acg::slots);
+  }
+
+  // An attempt's start: from the impulses' velocity change (`warm`) or from
+  // zero impulses, with no direction, momentum or scalar left from before.
+  void start_attempt(const BV& b, const CV& c, ContactStore& contacts, bool warm, stream_t stream) {
+    namespace acg = detail::acg;
+    const Device dev{};
+    if (warm) {
+      launch(dev, c.size(), ApplyImpulses<Model, BV, CV, Sink, T>{b, c, acc_.sink()}, stream);
+      acc_.apply(b, stream);
+    } else {
+      contacts.x.fill(T(0), stream);
+    }
+    // No stale value may enter the first extrapolation (its beta is 0, but 0 * NaN is not 0).
+    p_.fill(T(0), stream), pg_.fill(T(0), stream);
+    const std::size_t n = c.size() > b.size() ? c.size() : b.size();
+    T* state = state_.data();
+    launch(dev, n, detail::ResetMomentum<BV, CV, T>{b, c, px_.view(), pv_.view(), pw_.view(), state + acg::momentum_slot},
+           stream);
+    launch(dev, 1, acg::ResetState<T>{state}, stream);
+  }
+
   Accumulator<Gather, Device, T> acc_;
   detail::DeviceAlgorithms<Device> alg_;
   VectorD2<T, device_is<Device>> rhs_, p_, px_, pg_, dvp_, dwp_, pv_, pw_;  // rhs_: each contact's gradient
