@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The test command of the README: installs what it needs, builds what the tests
 # need (the CUDA targets too when nvcc is present; the GPU suite where a GPU is
-# usable), runs the whole suite, and runs the host suite once more under
-# AddressSanitizer and UndefinedBehaviorSanitizer, built while the first runs.
+# usable), runs the whole suite, tests in parallel, and runs the host suite once
+# more under AddressSanitizer and UndefinedBehaviorSanitizer.
 # Fails when anything fails. Without a GPU the GPU suite is reported as skipped.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,12 +19,7 @@ command -v nvidia-smi >/dev/null 2>&1 && nvidia-smi -L >/dev/null 2>&1 && gpu_te
 
 cmake --preset default -DGPUSOLVE_BUILD_BENCH=OFF -DGPUSOLVE_BUILD_GPU_TESTS="$gpu_tests"
 cmake --build --preset default
-cmake --preset sanitize > build/sanitize-configure.log 2>&1 || { cat build/sanitize-configure.log; exit 1; }
-# The sanitizer build uses the cores the suite leaves idle.
-cmake --build --preset sanitize > build/sanitize-build.log 2>&1 &
-sanitize_build=$!
-status=0
-ctest --preset default -j "$jobs" || status=$?
-wait "$sanitize_build" || { tail -40 build/sanitize-build.log; exit 1; }
-[ "$status" -eq 0 ] || exit "$status"
+ctest --preset default -j "$jobs"
+cmake --preset sanitize
+cmake --build --preset sanitize
 ctest --preset sanitize

@@ -13,10 +13,6 @@
 
 using namespace rbd_test;
 
-namespace {
-constexpr double g = 9.81;
-}
-
 TEST_CASE("contact colouring: no colour holds two contacts of one moving body, and it is deterministic",
           "[rbd_methods]") {
   auto set = pile<double>(4, 4);  // 64 spheres, up to 12 contacts each, and the floor

@@ -7,9 +7,6 @@
 
 using namespace rbd_test;
 
-namespace {
-constexpr double g = 9.81;
-}
 
 TEST_CASE("free fall follows the closed form of the integrator", "[rbd_physics]") {
   BodySet<double> set;

@@ -10,6 +10,8 @@
 
 namespace rbd_test {
 
+inline constexpr double g = 9.81;  // |gravity| of the scenes, m/s^2
+
 using namespace gpusolve;
 using namespace gpusolve::rbd;
 
