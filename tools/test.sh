@@ -22,4 +22,4 @@ cmake --build --preset default
 ctest --preset default -j "$jobs"
 cmake --preset sanitize
 cmake --build --preset sanitize
-ctest --preset sanitize
+ctest --preset sanitize -j "$jobs"

@@ -56,14 +56,14 @@ TEST_CASE("each settings group validates its own fields and names them", "[rbd_s
 TEST_CASE("the README's World example runs on the CPU backend", "[rbd_settings]") {
   BodySet<float> set;
   set.add_plane({0, 0, 1}, 0);
-  for (int i = 0; i < 64; ++i)
+  for (int i = 0; i < 32; ++i)  // the README's lattice, two layers of 4 x 4
     set.add_sphere({2.1f * (i % 4), 2.1f * (i / 4 % 4), 1.1f + 2.1f * (i / 16)}, 1.0f, 1.0f);
   SolverSettings<float> settings;
   settings.friction = 0.5f;
   World<device::cpu> world(set, settings);
-  for (int k = 0; k < 800; ++k) world.advance();  // 2 s: the top layer (7.4 m up) has landed
+  for (int k = 0; k < 400; ++k) world.advance();  // 1 s: both layers have landed
   const StepStats<float> s = world.latest_stats();
-  CHECK(s.solver.contacts >= 64);  // every sphere rests on the floor or on another
+  CHECK(s.solver.contacts >= 32);  // every sphere rests on the floor or on another
   CHECK(s.max_penetration < 0.01f);
   world.syncHost();
   for (std::size_t i = 1; i < set.size(); ++i) CHECK(set[i].pos[2] > 0.98f);
