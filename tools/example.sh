@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The README's main command: installs what it needs (povray included), builds
-# gpusolve_scenes (its CUDA build too when nvcc is present), runs the well scene
+# gpusolve_scenes (its CUDA build where a GPU is usable), runs the well scene
 # at a size that takes about a minute, renders its last frame and says where
 # everything is. Usage: tools/example.sh [extra gpusolve_scenes options]
 set -euo pipefail
