@@ -187,6 +187,13 @@ GPUSOLVE_HD Manifold<T> capsule_box(const PlacedShape<T>& capsule, const PlacedS
       if (t_min > lo) lo = t_min;
       if (t_max < hi) hi = t_max;
     }
+    // The contact found above stays in: where the core runs just beside the
+    // face's rectangle its closest part is outside the clip (gaps there are
+    // taken along the face normal).
+    if (hi >= lo) {
+      if (tc < lo) lo = tc;
+      if (tc > hi) hi = tc;
+    }
     if ((hi - lo) * 2 * L > T(1e-3) * scale) {
       Manifold<T> m;
       V nf;
@@ -196,8 +203,8 @@ GPUSOLVE_HD Manifold<T> capsule_box(const PlacedShape<T>& capsule, const PlacedS
         const T t = j == 0 ? lo : hi;
         V Pj = P0 + t * D;
         const T g = sg * Pj[k] - h[k] - r;
-        Pj[k] = sg * h[k];
-        for (int i = 0; i < 3; ++i) Pj[i] = detail::clamp_to(Pj[i], -h[i], h[i]);  // rounding only
+        for (int i = 0; i < 3; ++i) Pj[i] = detail::clamp_to(Pj[i], -h[i], h[i]);
+        Pj[k] = sg * h[k];  // the core point's foot on the face (within its rectangle)
         if (g < margin) m.add(V(box.to_world(Pj) + (g / 2) * m.n), g, std::uint32_t(j));
       }
       return m;
