@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <type_traits>
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
@@ -96,12 +98,16 @@ GPUSOLVE_HD Manifold<T> collide(std::uint8_t ka, const PlacedShape<T>& a, std::u
   }
 }
 
-// Body i of a Bodies view as the narrow phase reads it (a plane needs no rotation).
+// Body i of a Bodies view as the narrow phase reads it: only boxes and
+// capsules need their rotation (a sphere's does not change its surface, a
+// plane's lies in its parameters), so only theirs is loaded.
 template <class T, class View>
 GPUSOLVE_HD PlacedShape<T> placed_shape(const View& b, std::size_t i) {
   PlacedShape<T> s{math::Vector3<T>(b.pos(i, 0), b.pos(i, 1), b.pos(i, 2)), math::Matrix3x3<T>::identity(), {}};
-  for (std::size_t c = 0; c < 4; ++c) s.p[c] = b.shape_param(i, c);
-  if (b.shape[i] != plane)
+  const std::uint8_t kind = b.shape[i];
+  const std::size_t params = kind == plane ? 4 : kind == box ? 3 : kind == capsule ? 2 : 1;
+  for (std::size_t c = 0; c < params; ++c) s.p[c] = b.shape_param(i, c);
+  if (kind == box || kind == capsule)
     for (std::size_t c = 0; c < 9; ++c) s.R[c] = b.R(i, c);
   return s;
 }
