@@ -33,7 +33,7 @@ namespace detail {
 // cells, not removed. Obstacles are met by every moving body on the grid.
 template <class View, class T>
 GPUSOLVE_HD bool obstacle(const View& b, std::size_t i, const GridGeometry<T>& g, T margin) {
-  if (b.status[i] == removed) return false;
+  if (b.status[i] != fixed) return false;  // a moving body is always on the grid
   return b.shape[i] == plane || (grid_candidate(b, i) && !g.holds(b, i, margin));
 }
 
@@ -72,7 +72,17 @@ struct ContactWalk {
   static constexpr bool spheres_only = (M & ~spheres_and_planes) == 0;
 
   GPUSOLVE_HD Manifold<T> manifold(std::size_t i, std::uint32_t j) const {
-    return collide<M, T>(b.shape[i], placed_shape<T>(b, i), b.shape[j], placed_shape<T>(b, j), margin);
+    if constexpr (spheres_only) {  // body i is a sphere on the grid, j a sphere or a plane
+      const math::Vector3<T> pa = math::load3<T>(b.pos, i);
+      if (b.shape[j] == plane)
+        return within_margin(sphere_plane(pa, b.radius[i], math::Vector3<T>(b.shape_param(j, 0), b.shape_param(j, 1),
+                                                                           b.shape_param(j, 2)),
+                                          b.shape_param(j, 3)),
+                             margin);
+      return within_margin(sphere_sphere(pa, b.radius[i], math::load3<T>(b.pos, j), b.radius[j]), margin);
+    } else {
+      return collide<M, T>(b.shape[i], placed_shape<T>(b, i), b.shape[j], placed_shape<T>(b, j), margin);
+    }
   }
 
   template <class F>
@@ -244,6 +254,12 @@ struct WriteContacts {
     if (offset[i] > contacts.size()) return;
     const std::uint32_t first = offset[i] - count[i], last = offset[i];
     const std::uint32_t partners = Walk::spheres_only ? count[i] : pairs[i];
+    if constexpr (Walk::spheres_only) {  // one point per pair: no manifold loop
+      if (partners <= kept_contacts) {
+        for (std::uint32_t p = 0; p < partners; ++p) write_one(first + p, i, kept[p * n + i]);
+        return;
+      }
+    }
     if (partners <= kept_contacts) {
       std::uint32_t o = first;
       for (std::uint32_t p = 0; p < partners; ++p) {
@@ -265,6 +281,15 @@ struct WriteContacts {
       for (int k = m.count; k-- > 0 && end > first + p;) write(--end, i, j, m, k);
       if (p == 0) pad(first, end, i, j, m.n);
     }
+  }
+
+  // A sphere pair's one point (or an inert contact where it is no longer found).
+  GPUSOLVE_HD void write_one(std::uint32_t o, std::size_t i, std::uint32_t j) const {
+    const Manifold<T> m = walk.manifold(i, j);
+    if (m.count > 0)
+      write(o, i, j, m, 0);
+    else
+      pad(o, o + 1, i, j, m.n);
   }
 
   GPUSOLVE_HD void write(std::uint32_t o, std::size_t i, std::uint32_t j, const Manifold<T>& m, int k) const {
