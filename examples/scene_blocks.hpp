@@ -16,7 +16,7 @@ namespace scenes {
 // in an open box of planes 14 to each side. Above it `scale` bodies wait on a
 // lattice of spacing 3.5, turned at random, a box (half extents 1, 0.6, 0.4),
 // a capsule (radius 0.5, half length 1) and a sphere (radius 1) in turn, all
-// of density 1; they fall, hit the pyramid and topple it within 2 s.
+// of density 1; they fall onto the pyramid and scatter around it.
 template <class T>
 class Blocks {
  public:
