@@ -2,13 +2,18 @@
 // solver method and iteration budget: time per step against the largest
 // penetration and the LCP residual it bought, and whether each step converged.
 //
-// Run: gpusolve_bench_atlas --scene pile|column|hopper [--n 10000,100000] [--ratios 1,100,1000]
+// Run: gpusolve_bench_atlas --scene pile|cubes|mixed|column|pyramid|stack|hopper [--n 10000,100000] [--ratios 1,100,1000]
 //        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,tol0.02,check10]
 //        [--margins 0.1]
 //        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, PILE.md), N spheres dropped into
 //         an open box; 1 200 steps for N <= 10 000, else 900 (PILE.md's counts).
+// cubes:  the shared cube pile (PILE.md), N cubes turned at random; 2 400 steps.
+// mixed:  the cube pile's lattice filled with spheres, boxes and capsules in
+//         turn (bench/shared_pile.hpp); 2 400 steps.
+// pyramid: a pyramid of unit cubes, --n layers (20: 210 boxes); 4 000 steps (10 s).
+// stack:  --n unit cubes stacked (20); 4 000 steps (10 s).
 // column: ten spheres stacked (--n N: N spheres; a tall stack is --n 40 --ratios 1),
 //         masses alternating 1 and the ratio; 2 000 steps.
 // hopper: the thesis's hopper scene (examples/scene_hopper.hpp, 9 857 spheres,
@@ -28,7 +33,10 @@
 // solve, integration and World's statistics, what a user's loop pays) with CUDA
 // events around World::step, mean and median; mean iterations; the median final
 // residual. Over the last 200 steps: the largest penetration relative to the
-// radius. Over the whole run: steps at the iteration cap and diverged steps.
+// smaller feature size of the pair (a radius, a box's smallest half extent).
+// Over the whole run: steps at the iteration cap and diverged steps. At the
+// end: `drift`, the largest distance a moving body's centre moved from where
+// it started, over its feature size (pyramid and stack: standing is below 1%).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -77,9 +85,9 @@ struct Run {
 };
 
 struct Result {
-  double ms_mean = 0, ms_median = 0, penetration = 0, residual = 0, iterations = 0, kinetic = 0, height = 0;
+  double ms_mean = 0, ms_median = 0, penetration = 0, residual = 0, iterations = 0, kinetic = 0, height = 0, drift = 0;
   std::size_t contacts = 0, capped = 0, diverged = 0, colours = 0;
-  bool fell = false;  // a column whose top sphere left its place by more than a radius
+  bool fell = false;  // a column's top sphere left its place by a radius; a tower's box moved 1% of its size
 };
 
 constexpr double hopper_friction = 0.1;  // the scene's (examples/scene_hopper.hpp)
@@ -135,6 +143,10 @@ const rbd::BodySet<T>& settled_hopper(std::size_t n) {
 template <class Dev>
 rbd::BodySet<T> scene_set(const Run& r) {
   if (r.scene == "pile") return shared_pile<T>(r.n);
+  if (r.scene == "cubes") return cube_pile<T>(r.n);
+  if (r.scene == "mixed") return mixed_pile<T>(r.n);
+  if (r.scene == "pyramid") return box_pyramid<T>(r.n);
+  if (r.scene == "stack") return box_stack<T>(r.n);
   if (r.scene == "column") return mass_column<T>(r.n, r.ratio);
   return settled_hopper<Dev>(r.n);
 }
@@ -163,6 +175,7 @@ class StepTimer<device::cpu> {
 template <class Dev, class Method>
 Result run(const Run& r) {
   rbd::BodySet<T> set = scene_set<Dev>(r);
+  const rbd::BodySet<T> start = set;
   const SolverSettings<T> s = settings_for(r);
   rbd::World<Dev, T, rbd::ConeFriction, Method> world(set, s);
   StepTimer<Dev> timer;
@@ -190,8 +203,16 @@ Result run(const Run& r) {
   }
   world.syncHost();
   for (std::size_t i = 0; i < set.size(); ++i)
-    if (set[i].status == rbd::active) out.height = std::max(out.height, double(set[i].pos[2]));
+    if (set[i].status == rbd::active) {
+      out.height = std::max(out.height, double(set[i].pos[2]));
+      double d2 = 0;
+      for (int c = 0; c < 3; ++c) d2 += std::pow(double(set[i].pos[c]) - double(start[i].pos[c]), 2);
+      const auto& p = set[i].shape_param;
+      const double size = set[i].shape == rbd::box ? std::min({p[0], p[1], p[2]}) : p[0];
+      out.drift = std::max(out.drift, std::sqrt(d2) / size);
+    }
   if (r.scene == "column") out.fell = std::fabs(out.height - double(2 * r.n - 1)) > 1.0;
+  if (r.scene == "pyramid" || r.scene == "stack") out.fell = out.drift > 0.01;  // a box moved 1% of its size
   double sum = 0;
   for (double v : ms) sum += v;
   out.ms_mean = sum / double(ms.size());
@@ -222,7 +243,7 @@ const char* verdict(const Run& r, const Result& x) {
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "--scene pile|column|hopper [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
+      "--scene pile|cubes|mixed|column|pyramid|stack|hopper [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
       "[--warm LIST] [--dts LIST] [--steps N] [--backend gpu|cpu] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -239,7 +260,8 @@ int main(int argc, char** argv) {
     else if (a == "--csv") o.csv = option_value(argc, argv, i);
     else usage_exit(argv[0], usage, a);
   }
-  if (o.scene != "pile" && o.scene != "column" && o.scene != "hopper") usage_exit(argv[0], usage, "--scene " + o.scene);
+  const std::vector<std::string> scenes{"pile", "cubes", "mixed", "column", "pyramid", "stack", "hopper"};
+  if (std::find(scenes.begin(), scenes.end(), o.scene) == scenes.end()) usage_exit(argv[0], usage, "--scene " + o.scene);
   if (o.backend != "gpu" && o.backend != "cpu") usage_exit(argv[0], usage, "--backend " + o.backend);
   try {
     const char* what = "gpusolve atlas: whole World steps, time per step against accuracy";
@@ -258,10 +280,11 @@ int main(int argc, char** argv) {
     std::FILE* csv = open_csv(
         o.csv,
         "scene,n,mass_ratio,method,budget,margin,warm_start,dt,steps,ms_per_step_mean,ms_per_step_median,contacts,colours,"
-        "max_penetration,residual_median,iterations_mean,capped_steps,diverged_steps,kinetic_energy,height,verdict,"
+        "max_penetration,residual_median,iterations_mean,capped_steps,diverged_steps,kinetic_energy,height,drift,verdict,"
         "gpu");
     const std::vector<double> ratios = o.scene == "column" ? o.ratios : std::vector<double>{1};
-    const std::size_t scene_n = o.scene == "column" ? 10 : o.scene == "hopper" ? 9857 : 10000;
+    const bool tower = o.scene == "pyramid" || o.scene == "stack";
+    const std::size_t scene_n = o.scene == "column" ? 10 : o.scene == "hopper" ? 9857 : tower ? 20 : 10000;
     const std::vector<std::size_t> ns = !o.n.empty() ? o.n : std::vector<std::size_t>{scene_n};
     for (std::size_t n : ns)
       for (double ratio : ratios)
@@ -272,7 +295,12 @@ int main(int argc, char** argv) {
               for (const auto& budget : o.budgets) {
                 Run r{o.scene, method, budget, n, ratio, margin, dt, warm, o.steps, o.backend == "gpu"};
                 if (r.steps == 0)
-                  r.steps = o.scene == "column" ? 2000 : o.scene == "hopper" ? 600 : (n <= 10000 ? 1200 : 900);
+                  r.steps = o.scene == "column"                        ? 2000
+                            : o.scene == "hopper"                      ? 600
+                            : tower                                    ? 4000
+                            : o.scene == "cubes" || o.scene == "mixed" ? 2400
+                            : n <= 10000                               ? 1200
+                                                                       : 900;
                 if (r.margin < 0) r.margin = double(SolverSettings<T>{}.margin);
                 if (r.warm < 0) r.warm = double(SolverSettings<T>{}.warm_start);
                 std::printf("... %s n=%zu ratio=%g %s %s margin=%g warm %g dt=%g, %ld steps\n", r.scene.c_str(), n,
@@ -280,15 +308,15 @@ int main(int argc, char** argv) {
                 std::fflush(stdout);
                 const Result x = r.gpu ? dispatch<device::gpu>(r) : dispatch<device::cpu>(r);
                 std::printf("    %.3f ms/step (median %.3f), penetration %.4f%%, residual %.3g, %.1f iterations, "
-                            "%zu contacts, %zu colours, capped %zu, diverged %zu: %s\n",
+                            "%zu contacts, %zu colours, capped %zu, diverged %zu, drift %.4f: %s\n",
                             x.ms_mean, x.ms_median, 100 * x.penetration, x.residual, x.iterations, x.contacts,
-                            x.colours, x.capped, x.diverged, verdict(r, x));
+                            x.colours, x.capped, x.diverged, x.drift, verdict(r, x));
                 std::fflush(stdout);
                 if (csv)
-                  std::fprintf(csv, "%s,%zu,%g,%s,%s,%g,%g,%g,%ld,%.4f,%.4f,%zu,%zu,%.6g,%.4g,%.2f,%zu,%zu,%.6g,%.4f,%s,%s\n",
+                  std::fprintf(csv, "%s,%zu,%g,%s,%s,%g,%g,%g,%ld,%.4f,%.4f,%zu,%zu,%.6g,%.4g,%.2f,%zu,%zu,%.6g,%.4f,%.5f,%s,%s\n",
                                r.scene.c_str(), n, ratio, method.c_str(), budget.c_str(), r.margin, r.warm, dt, r.steps,
                                x.ms_mean, x.ms_median, x.contacts, x.colours, x.penetration, x.residual, x.iterations,
-                               x.capped, x.diverged, x.kinetic, x.height, verdict(r, x), gpu.c_str());
+                               x.capped, x.diverged, x.kinetic, x.height, x.drift, verdict(r, x), gpu.c_str());
               }
     if (csv) std::fclose(csv);
   } catch (const std::exception& e) {

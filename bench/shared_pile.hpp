@@ -1,8 +1,10 @@
-// The atlas's scenes as BodySets: the shared sphere pile of PILE.md (the scene
-// peer engines were measured on) and a column of spheres of alternating mass.
+// The atlas's scenes as BodySets: the shared sphere and cube piles of PILE.md
+// (the scenes peer engines are measured on), a mixed pile, a column of spheres
+// of alternating mass, a box pyramid and a box stack.
 #pragma once
 
 #include <cmath>
+#include <array>
 #include <cstddef>
 #include <random>
 
@@ -15,25 +17,115 @@ namespace gpusolve::bench {
 // L = ceil(cbrt N), sphere i at lattice (i mod L, (i / L) mod L, i / L^2) plus
 // jitters (jx, jy, jz) from std::mt19937(1) and uniform_real_distribution(-0.05,
 // 0.05), the floor z = 0 and walls x, y = +-h with h = (L s + 0.2) / 2.
+// The open-top box of planes around a lattice of side L and spacing s: the
+// floor z = 0 and the walls x, y = +-h, h = (L s + 0.2) / 2.
 template <class T>
-rbd::BodySet<T> shared_pile(std::size_t n) {
-  const std::size_t L = std::size_t(std::ceil(std::cbrt(double(n)) - 1e-9));
-  const double s = 2.1;
-  std::mt19937 gen(1);
-  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
-  rbd::BodySet<T> set;
-  const double c0 = -(double(L) - 1) * s / 2;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t x = i % L, y = (i / L) % L, z = i / (L * L);
-    const double jx = jitter(gen), jy = jitter(gen), jz = jitter(gen);
-    set.add_sphere({T(c0 + x * s + jx), T(c0 + y * s + jy), T(1.1 + z * s + jz)}, T(1), T(1));
-  }
+void add_open_box(rbd::BodySet<T>& set, std::size_t L, double s) {
   const T h = T((double(L) * s + 0.2) / 2);
   set.add_plane({0, 0, 1}, 0);
   set.add_plane({1, 0, 0}, -h);  // n.x = d: the wall x = -h, solid below
   set.add_plane({-1, 0, 0}, -h);
   set.add_plane({0, 1, 0}, -h);
   set.add_plane({0, -1, 0}, -h);
+}
+
+// Calls body(i, centre) for the n sites of PILE.md's jittered cubic lattice of
+// spacing s, lowest layer at z0: side L = ceil(cbrt n), site i at (i mod L,
+// (i / L) mod L, i / L^2) plus jitters (jx, jy, jz) from std::mt19937(1) and
+// uniform_real_distribution(-0.05, 0.05); returns L.
+template <class F>
+std::size_t jittered_lattice(std::size_t n, double s, double z0, F&& body) {
+  const std::size_t L = std::size_t(std::ceil(std::cbrt(double(n)) - 1e-9));
+  std::mt19937 gen(1);
+  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+  const double c0 = -(double(L) - 1) * s / 2;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t x = i % L, y = (i / L) % L, z = i / (L * L);
+    const double jx = jitter(gen), jy = jitter(gen), jz = jitter(gen);
+    body(i, std::array<double, 3>{c0 + x * s + jx, c0 + y * s + jy, z0 + z * s + jz});
+  }
+  return L;
+}
+
+// The shared sphere pile: N spheres (radius 1, mass 1), spacing 2.1, z0 = 1.1.
+template <class T>
+rbd::BodySet<T> shared_pile(std::size_t n) {
+  rbd::BodySet<T> set;
+  const std::size_t L = jittered_lattice(n, 2.1, 1.1, [&](std::size_t, const std::array<double, 3>& c) {
+    set.add_sphere({T(c[0]), T(c[1]), T(c[2])}, T(1), T(1));
+  });
+  add_open_box(set, L, 2.1);
+  return set;
+}
+
+// Random orientations as PILE.md draws them: four normal(0, 1) draws on
+// std::mt19937(2), normalised.
+class RandomTurns {
+ public:
+  template <class T>
+  std::array<T, 4> next() {
+    double q[4], len = 0;
+    for (double& x : q) x = normal_(gen_), len += x * x;
+    len = std::sqrt(len);
+    return {T(q[0] / len), T(q[1] / len), T(q[2] / len), T(q[3] / len)};
+  }
+
+ private:
+  std::mt19937 gen_{2};
+  std::normal_distribution<double> normal_{0.0, 1.0};
+};
+
+// The shared cube pile: N cubes (half extent 1, mass 1), spacing 3.6, z0 = 1.8,
+// each turned at random.
+template <class T>
+rbd::BodySet<T> cube_pile(std::size_t n) {
+  rbd::BodySet<T> set;
+  RandomTurns turns;
+  const std::size_t L = jittered_lattice(n, 3.6, 1.8, [&](std::size_t, const std::array<double, 3>& c) {
+    set.add_box({T(c[0]), T(c[1]), T(c[2])}, {T(1), T(1), T(1)}, T(1), turns.next<T>());
+  });
+  add_open_box(set, L, 3.6);
+  return set;
+}
+
+// The mixed pile: the cube pile's lattice filled in turn with a sphere
+// (radius 1), a box (half extents 1, 0.7, 0.5), a capsule (radius 0.5, half
+// length 0.9), all of mass 1 and turned at random.
+template <class T>
+rbd::BodySet<T> mixed_pile(std::size_t n) {
+  rbd::BodySet<T> set;
+  RandomTurns turns;
+  const std::size_t L = jittered_lattice(n, 3.6, 1.8, [&](std::size_t i, const std::array<double, 3>& c) {
+    const std::array<T, 3> x{T(c[0]), T(c[1]), T(c[2])};
+    const std::array<T, 4> q = turns.next<T>();
+    if (i % 3 == 0) set.add_sphere(x, T(1), T(1));
+    if (i % 3 == 1) set.add_box(x, {T(1), T(0.7), T(0.5)}, T(1), q);
+    if (i % 3 == 2) set.add_capsule(x, T(0.5), T(0.9), T(1), q);
+  });
+  add_open_box(set, L, 3.6);
+  return set;
+}
+
+// A pyramid of unit cubes (half extent 0.5, mass 1) on the floor: `layers`
+// rows in the x-z plane, the bottom one `layers` long, each row centred on
+// the one below (210 boxes for 20 layers), 0.01 apart.
+template <class T>
+rbd::BodySet<T> box_pyramid(std::size_t layers) {
+  rbd::BodySet<T> set;
+  set.add_plane({0, 0, 1}, 0);
+  for (std::size_t l = 0; l < layers; ++l)
+    for (std::size_t k = 0; k + l < layers; ++k)
+      set.add_box({T((double(k) - double(layers - l - 1) / 2) * 1.01), T(0), T(0.5 + 1.0 * double(l))},
+                  {T(0.5), T(0.5), T(0.5)}, T(1));
+  return set;
+}
+
+// `count` unit cubes stacked on the floor, exactly aligned.
+template <class T>
+rbd::BodySet<T> box_stack(std::size_t count) {
+  rbd::BodySet<T> set;
+  set.add_plane({0, 0, 1}, 0);
+  for (std::size_t k = 0; k < count; ++k) set.add_box({0, 0, T(0.5 + double(k))}, {T(0.5), T(0.5), T(0.5)}, T(1));
   return set;
 }
 

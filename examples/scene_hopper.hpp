@@ -56,17 +56,17 @@ class Hopper {
       const double cz = outlet_height + s * 0.5 * slope - s * wall_half;
       const auto q = rotation<T>({0, 0, 1}, k * pi / 2, rotation<T>({0, 1, 0}, -pi / 4));
       const double c = std::cos(k * pi / 2), sn = std::sin(k * pi / 2);
-      set.add_box(V{T(c * cx), T(sn * cx), T(cz)}, V{T(0.5 * slope), T(inner_half + 1.0), T(wall_half)}, q);
+      set.add_fixed_box(V{T(c * cx), T(sn * cx), T(cz)}, V{T(0.5 * slope), T(inner_half + 1.0), T(wall_half)}, q);
     }
     // Vertical shaft walls, from the top of the funnel to above the fill.
     const double wall_bottom = outlet_height + funnel_height, hz = 0.5 * (top - wall_bottom);
     for (int k = 0; k < 4; ++k) {
       const double c = std::cos(k * pi / 2), sn = std::sin(k * pi / 2), d = inner_half + wall_half;
-      set.add_box(V{T(c * d), T(sn * d), T(wall_bottom + hz)}, V{T(wall_half), T(inner_half + 2 * wall_half), T(hz)},
+      set.add_fixed_box(V{T(c * d), T(sn * d), T(wall_bottom + hz)}, V{T(wall_half), T(inner_half + 2 * wall_half), T(hz)},
                   rotation<T>({0, 0, 1}, k * pi / 2));
     }
     // The outlet's lid: its top face closes the opening at the outlet height.
-    lid_ = set.add_box(V{0, 0, T(outlet_height - wall_half)}, V{T(outlet_half + 2.5), T(outlet_half + 2.5), T(wall_half)});
+    lid_ = set.add_fixed_box(V{0, 0, T(outlet_height - wall_half)}, V{T(outlet_half + 2.5), T(outlet_half + 2.5), T(wall_half)});
 
     Random rnd(o_.seed);
     const double x0 = -0.5 * (per_row - 1) * spacing;

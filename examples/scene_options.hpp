@@ -72,7 +72,7 @@ struct Options {
 };
 
 inline const std::vector<std::string>& scene_names() {
-  static const std::vector<std::string> names{"ballpark", "well", "hopper"};
+  static const std::vector<std::string> names{"ballpark", "well", "hopper", "blocks"};
   return names;
 }
 
@@ -84,13 +84,14 @@ inline std::string usage(const std::string& accumulations, const std::string& de
        "scenes:\n"
        "  ballpark   a block of 7x7x7 slightly misaligned spheres falling in a closed box\n"
        "  well       spheres poured into a round well of 150 fixed boxes standing on a plane\n"
-       "  hopper     a square hopper filled with spheres; after a warm-up its outlet opens\n\n"
+       "  hopper     a square hopper filled with spheres; after a warm-up its outlet opens\n"
+       "  blocks     boxes, capsules and spheres dropped onto a pyramid of boxes\n\n"
        "options (a value may follow '=' or come as the next argument):\n"
        "  --scene NAME          the scene, instead of the first positional argument\n"
        "  --backend B           cpu, gpu or auto (the GPU when this build and machine have one) [auto]\n"
        "  --steps N             time steps [scene]; the well's insertion stop (90%) and the\n"
        "                        hopper's warm-up (50%) scale with it\n"
-       "  --scale N             number of spheres [scene]\n"
+       "  --scale N             number of spheres (blocks: of bodies dropped) [scene]\n"
        "  --dt X                time step in seconds [scene]\n"
        "  --solver NAME         jacobi (thesis 5.2), apgd (Nesterov-accelerated),\n"
        "                        gauss-seidel (coloured, parallel) or substepping (4 APGD\n"
@@ -225,7 +226,7 @@ inline Options parse_options(int argc, const char* const* argv, const std::vecto
     else if (o.scene.empty()) o.scene = one_of("scene", a, scene_names());
     else throw UsageError("unexpected argument '" + a + "' (the scene is already '" + o.scene + "')");
   }
-  if (!o.help && o.scene.empty()) throw UsageError("no scene given: choose ballpark, well or hopper");
+  if (!o.help && o.scene.empty()) throw UsageError("no scene given: choose ballpark, well, hopper or blocks");
   return o;
 }
 

@@ -45,7 +45,7 @@ class Well {
       for (int k = 0; k < boxes_per_ring; ++k) {
         const double phi = 2 * pi * (k + 0.5 * (level % 2)) / boxes_per_ring;
         // Local x is radial, y tangential, z up.
-        set.add_box({T(ring_radius * std::cos(phi)), T(ring_radius * std::sin(phi)),
+        set.add_fixed_box({T(ring_radius * std::cos(phi)), T(ring_radius * std::sin(phi)),
                      T(level_half * (2 * level + 1))},
                     {T(wall_half), T(half_length), T(level_half)}, rotation<T>({0, 0, 1}, phi));
       }

@@ -1,5 +1,6 @@
-// gpusolve_scenes: the thesis's scenes (ballpark, well, hopper) on either backend, with
+// gpusolve_scenes: the thesis's scenes (ballpark, well, hopper) and blocks (every shape) on either backend, with
 // per-step statistics, a JSON summary and frames for ParaView and POV-Ray.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "gpusolve/rbd/io/vtk_writer.hpp"
 #include "gpusolve/rbd/world.hpp"
 #include "scene_ballpark.hpp"
+#include "scene_blocks.hpp"
 #include "scene_hopper.hpp"
 #include "scene_options.hpp"
 #include "scene_progress.hpp"
@@ -76,12 +78,14 @@ std::string gpu_name() {
 }
 #endif
 
-// Writes the frames the options ask for: spheres and fixed geometry as VTK, the whole scene as POV-Ray.
+// Writes the frames the options ask for: spheres, moving shapes and fixed geometry as VTK, the whole scene as POV-Ray.
 void write_frame(const Options& o, const rbd::io::Frame& f, const rbd::io::PovOptions& camera) {
   char name[32];
   std::snprintf(name, sizeof name, "%05zu", f.step);
   if (o.wants("vtk")) {
     rbd::io::write_vtk_spheres(o.out + "/frame_" + name + ".vtk", f);
+    if (!f.capsules.empty() || std::any_of(f.boxes.begin(), f.boxes.end(), [](const auto& b) { return b.moving; }))
+      rbd::io::write_vtk_shapes(o.out + "/shapes_" + name + ".vtk", f);
     rbd::io::write_vtk_fixed(o.out + "/fixed_" + name + ".vtk", f, 60.0);
   }
   if (o.wants("pov")) rbd::io::write_povray(o.out + "/frame_" + name + ".pov", f, camera);
@@ -177,6 +181,7 @@ std::string defaults_text() {
   line("ballpark", Ballpark<real>::defaults());
   line("well    ", Well<real>::defaults());
   line("hopper  ", Hopper<real>::defaults());
+  line("blocks  ", Blocks<real>::defaults());
   return os.str();
 }
 
@@ -211,12 +216,16 @@ int main_(int argc, char** argv) {
 
   // The scene objects outlive the run; only the chosen one is used.
   Ballpark<real> ballpark(o);
+  Blocks<real> blocks(o);
   std::optional<Well<real>> well;
   std::optional<Hopper<real>> hopper;
   AnyScene scene;
   if (o.scene == "ballpark") {
     o.resolve(Ballpark<real>::defaults());
     scene = erase(ballpark);
+  } else if (o.scene == "blocks") {
+    o.resolve(Blocks<real>::defaults());
+    scene = erase(blocks);
   } else if (o.scene == "well") {
     o.resolve(Well<real>::defaults());
     scene = erase(well.emplace(o));

@@ -11,7 +11,12 @@
              against it, one line per method and budget, and each column's
              verdict per method, budget, mass ratio and factor.
 
+  scenes:    any scenes (the shape piles, the pyramid and the stack): per
+             scene, each method and budget's time per step against its
+             largest penetration, or for the towers the largest move (drift).
+
 Usage: python3 tools/plot_atlas.py pile CSV [CSV ...] -o pile.png
+       python3 tools/plot_atlas.py scenes CSV [CSV ...] -o shapes.png
        python3 tools/plot_atlas.py stability CSV [CSV ...] -o stability.png
        python3 tools/plot_atlas.py warm CSV [CSV ...] -o warm.png
 """
@@ -146,16 +151,40 @@ def plot_stability(rows, out):
     fig.savefig(out, dpi=110)
 
 
+def plot_scenes(rows, out):
+    """One panel per scene: each method and budget a point of time per step
+    against the largest penetration (log), and, for the towers, the drift."""
+    plt = pyplot()
+    scenes = sorted({r["scene"] for r in rows})
+    fig, axes = plt.subplots(1, len(scenes), figsize=(4.5 * len(scenes), 4), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        tower = scene in ("pyramid", "stack")
+        for r in (r for r in rows if r["scene"] == scene):
+            y = float(r["drift"]) if tower else float(r["max_penetration"])
+            ax.scatter(float(r["ms_per_step_median"]), 100 * y)
+            ax.annotate(f'{r["method"]} {budget_label(r["budget"])}', (float(r["ms_per_step_median"]), 100 * y),
+                        fontsize=7)
+        if tower:
+            ax.axhline(1.0, color="grey", lw=0.8, ls="--")
+        ax.set_yscale("log")
+        ax.set_xlabel("ms per step (median)")
+        ax.set_ylabel("largest move / box size, %" if tower else "largest penetration / feature size, %")
+        ax.set_title(f'{scene}, n = {rows[0]["n"] if len(scenes) == 1 else next(r["n"] for r in rows if r["scene"] == scene)}')
+    fig.suptitle(rows[0].get("gpu", ""), fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+
+
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("chart", choices=["pile", "stability", "warm"])
+    ap.add_argument("chart", choices=["pile", "stability", "warm", "scenes"])
     ap.add_argument("csv", nargs="+")
     ap.add_argument("-o", "--out", required=True)
     a = ap.parse_args(argv)
     rows = read(a.csv)
     if not rows:
         sys.exit("plot_atlas: no rows in " + ", ".join(a.csv))
-    {"pile": plot_pile, "stability": plot_stability, "warm": plot_warm}[a.chart](rows, a.out)
+    {"pile": plot_pile, "stability": plot_stability, "warm": plot_warm, "scenes": plot_scenes}[a.chart](rows, a.out)
     print("wrote", a.out)
 
 

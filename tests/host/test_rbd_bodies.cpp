@@ -43,7 +43,7 @@ TEST_CASE("BodySet builders derive mass properties", "[rbd][bodies]") {
   CHECK(s[p].shape_param[1] == Approx(0.6f));
   CHECK(s[p].shape_param[2] == Approx(0.8f));
   CHECK(s[p].pos[2] == Approx(1.6f));
-  const auto b = s.add_box({0.f, 0.f, 0.f}, {1.f, 2.f, 3.f});
+  const auto b = s.add_fixed_box({0.f, 0.f, 0.f}, {1.f, 2.f, 3.f});
   CHECK(s[b].inv_mass == 0.f);
   CHECK(s[b].status == fixed);
 }
@@ -59,9 +59,9 @@ TEST_CASE("bad body input throws InvalidBodyError naming body and field", "[rbd]
   require_bad([&] { s.add_sphere({0.f, 0.f, 0.f}, 1.f, inf_f); }, 1, "mass");
   require_bad([&] { s.add_sphere({0.f, 0.f, 0.f}, 1.f, 1.f, {1.f, -1.f, 1.f}); }, 1, "inertia");
   require_bad([&] { s.add_sphere({nan_f, 0.f, 0.f}, 1.f, 1.f); }, 1, "pos");
-  require_bad([&] { s.add_box({0.f, 0.f, 0.f}, {1.f, 0.f, 1.f}); }, 1, "half_extents");
-  require_bad([&] { s.add_box({0.f, 0.f, 0.f}, {1.f, 1.f, -1.f}); }, 1, "half_extents");
-  require_bad([&] { s.add_box({0.f, 0.f, 0.f}, {1.f, 1.f, 1.f}, {2.f, 0.f, 0.f, 0.f}); }, 1, "q");
+  require_bad([&] { s.add_fixed_box({0.f, 0.f, 0.f}, {1.f, 0.f, 1.f}); }, 1, "half_extents");
+  require_bad([&] { s.add_fixed_box({0.f, 0.f, 0.f}, {1.f, 1.f, -1.f}); }, 1, "half_extents");
+  require_bad([&] { s.add_fixed_box({0.f, 0.f, 0.f}, {1.f, 1.f, 1.f}, {2.f, 0.f, 0.f, 0.f}); }, 1, "q");
   require_bad([&] { s.add_plane({0.f, 0.f, 0.f}, 1.f); }, 1, "normal");
   require_bad([&] { s.add_plane({0.f, nan_f, 1.f}, 1.f); }, 1, "normal");
   require_bad([&] { s.add_fixed_sphere({0.f, 0.f, 0.f}, 0.f); }, 1, "radius");
@@ -75,9 +75,19 @@ TEST_CASE("bad body input throws InvalidBodyError naming body and field", "[rbd]
   b.status = fixed;  // fixed bodies must be massless
   require_bad([&] { s.add(b); }, 1, "mass");
   b = s[0];
-  b.shape = box;  // boxes are always fixed
-  b.shape_param = {1.f, 1.f, 1.f, 0.f};
+  b.shape = plane;  // planes are always fixed
+  b.shape_param = {0.f, 0.f, 1.f, 0.f};
   require_bad([&] { s.add(b); }, 1, "status");
+  b = s[0];
+  b.shape = capsule;
+  b.shape_param = {0.5f, 0.f, 0.f, 0.f};
+  require_bad([&] { s.add(b); }, 1, "half_length");
+  require_bad([&] { s.add_box({0.f, 0.f, 0.f}, {1.f, 1.f, 1.f}, 0.f); }, 1, "mass");
+  require_bad([&] { s.add_box({0.f, 0.f, 0.f}, {1.f, 1.f, nan_f}, 1.f); }, 1, "half_extents");
+  require_bad([&] { s.add_box({0.f, 0.f, 0.f}, {1.f, 1.f, 1.f}, 1.f, {0.5f, 0.5f, 0.f, 0.f}); }, 1, "q");
+  require_bad([&] { s.add_capsule({0.f, 0.f, 0.f}, 0.f, 1.f, 1.f); }, 1, "radius");
+  require_bad([&] { s.add_capsule({0.f, 0.f, 0.f}, 0.5f, -1.f, 1.f); }, 1, "half_length");
+  require_bad([&] { s.add_fixed_capsule({0.f, 0.f, 0.f}, 0.5f, 0.f); }, 1, "half_length");
   CHECK(s.size() == 1);  // nothing bad was added
   // State corrupted in place is caught at the next sync.
   s.add_sphere({0.f, 0.f, 5.f}, 1.f, 1.f);
@@ -90,7 +100,7 @@ TEST_CASE("bad body input throws InvalidBodyError naming body and field", "[rbd]
 TEST_CASE("BodyManager copies bodies and derived fields, and brings state back", "[rbd][bodies]") {
   BodySet<float> s;
   s.add_sphere({1.f, 2.f, 3.f}, 0.5f, 2.f);
-  s.add_box({0.f, 0.f, 0.f}, {1.f, 2.f, 2.f}, {std::sqrt(0.5f), 0.f, 0.f, std::sqrt(0.5f)});
+  s.add_fixed_box({0.f, 0.f, 0.f}, {1.f, 2.f, 2.f}, {std::sqrt(0.5f), 0.f, 0.f, std::sqrt(0.5f)});
   s.add_plane({0.f, 0.f, 1.f}, -1.f);
   s[0].v = {1.f, 0.f, 0.f};
   BodyManager<device::cpu> m(s, 2);

@@ -30,7 +30,7 @@ inline gpusolve::rbd::BodySet<float> random_cloud(unsigned seed, int n, float ex
   s.add_plane({1.f, 0.f, 0.f}, 0.f);
   s.add_plane({-1.f, 0.f, 0.f}, -extent);
   const float h = extent / 2;
-  s.add_box({h, h, h}, {extent / 8, extent / 10, extent / 6}, {0.9238795f, 0.f, 0.f, 0.3826834f});  // 45 deg about z
+  s.add_fixed_box({h, h, h}, {extent / 8, extent / 10, extent / 6}, {0.9238795f, 0.f, 0.f, 0.3826834f});  // 45 deg about z
   return s;
 }
 

@@ -93,7 +93,7 @@ TEST_CASE("integration moves the bounding-sphere AABB with the body", "[rbd][int
   BodySet<float> s;
   s.add_sphere({0.f, 0.f, 0.f}, 0.25f, 1.f);
   s[0].v = {1.f, -2.f, 0.5f};
-  s.add_box({3.f, 3.f, 3.f}, {0.3f, 0.4f, 1.2f});
+  s.add_fixed_box({3.f, 3.f, 3.f}, {0.3f, 0.4f, 1.2f});
   BodyManager<device::cpu> m(s);
   m.syncDevice();
   auto& d = m.device();

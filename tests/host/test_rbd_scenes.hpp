@@ -2,7 +2,9 @@
 #pragma once
 
 #include <cmath>
+#include <array>
 #include <cstddef>
+#include <random>
 #include <vector>
 
 #include "gpusolve/rbd/bodies/body_set.hpp"
@@ -49,6 +51,32 @@ BodySet<T> implosion(std::size_t n, T speed, T r = T(0.5)) {
         const T x = (T(i) - mid) * d, y = (T(j) - mid) * d, z = (T(k) - mid) * d;
         const std::size_t b = set.add_sphere({x, y, z}, r, T(1));
         set[b].v = {-speed * x, -speed * y, -speed * z};
+      }
+  return set;
+}
+
+// A heap of every moving shape: n x n columns of `layers` bodies on the plane
+// z = 0, spaced 1.1 apart (a capsule reaches 0.7, so columns touch), the
+// bodies of a row along y of one kind, the rows and layers sphere, box and
+// capsule in turn, turned a little at random (seed fixed), the layers 0.9
+// apart: the heap settles with every shape pair in contact.
+template <class T>
+BodySet<T> mixed_heap(std::size_t n, std::size_t layers, unsigned seed = 3) {
+  BodySet<T> set;
+  set.add_plane({0, 0, 1}, 0);
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> tilt(-0.15, 0.15);
+  for (std::size_t l = 0; l < layers; ++l)
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) {
+        const std::size_t k = i + l;
+        const std::array<T, 3> x{T(1.1 * double(i)), T(1.1 * double(j)), T(0.45 + 0.9 * double(l))};
+        const double a = tilt(gen), b = tilt(gen);
+        const double w = std::sqrt(1 - a * a - b * b);
+        const std::array<T, 4> q{T(w), T(a), T(b), T(0)};
+        if (k % 3 == 0) set.add_sphere(x, T(0.45), T(1));
+        if (k % 3 == 1) set.add_box(x, {T(0.45), T(0.52), T(0.35)}, T(1), q);
+        if (k % 3 == 2) set.add_capsule(x, T(0.3), T(0.4), T(1), q);
       }
   return set;
 }

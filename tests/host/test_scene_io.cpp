@@ -1,4 +1,5 @@
 // Tests of the scene output writers: CSV statistics, JSON summary, VTK frames, POV-Ray scenes.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "gpusolve/rbd/io/json_writer.hpp"
 #include "gpusolve/rbd/io/povray_writer.hpp"
 #include "gpusolve/rbd/io/vtk_writer.hpp"
+#include "gpusolve/rbd/io/snapshot.hpp"
 
 namespace fs = std::filesystem;
 using gpusolve::rbd::io::Frame;
@@ -251,4 +253,59 @@ TEST_CASE("POV-Ray scenes hold every object, camera and light", "[scene_io]") {
   bool found = false;
   for (const auto& l : lines) found |= l.rfind("sphere { <0, 1, 0>, 1 ", 0) == 0;
   CHECK(found);
+}
+
+TEST_CASE("frames draw moving boxes and capsules at their orientation", "[scene_io]") {
+  using namespace gpusolve::rbd;
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  set.add_fixed_box({0, 0, -1}, {1, 1, 1});
+  const double s = std::sqrt(0.5);
+  set.add_box({3, 0, 1}, {1, 0.5, 0.25}, 1.0, {s, 0, 0, s});      // turned 90 degrees about z
+  set.add_capsule({0, 3, 1}, 0.5, 2.0, 1.0, {s, 0, s, 0});        // its axis turned onto -z
+  const Frame f = io::snapshot(set, 7, 0.5);
+  REQUIRE(f.boxes.size() == 2);
+  CHECK(!f.boxes[0].moving);
+  CHECK(f.boxes[1].moving);
+  REQUIRE(f.capsules.size() == 1);
+  const auto ends = Frame::ends(f.capsules[0]);
+  CHECK(ends[0][2] == Approx(3.0));  // 1 + 2 along +z for the -x end
+  CHECK(ends[1][2] == Approx(-1.0));
+  CHECK(ends[1][0] == Approx(0.0).margin(1e-12));
+
+  const auto vtk = temp_file("shapes.vtk");
+  io::write_vtk_shapes(vtk.string(), f);
+  const auto lines = lines_of(vtk);
+  auto line_after = [&](const std::string& head) {
+    for (std::size_t k = 0; k < lines.size(); ++k)
+      if (lines[k].rfind(head, 0) == 0) return k;
+    FAIL("missing " << head);
+    return std::size_t{0};
+  };
+  CHECK(lines[line_after("POINTS")] == "POINTS 10 float");  // 8 corners of the moving box, 2 capsule ends
+  CHECK(lines[line_after("CELLS")] == "CELLS 2 12");
+  const auto types = line_after("CELL_TYPES");
+  CHECK(lines[types + 1] == "12");
+  CHECK(lines[types + 2] == "3");
+  // The moving box's first corner (-1, -0.5, -0.25) turned 90 degrees about z: (3.5, -1, 0.75).
+  const auto corner = split(lines[line_after("POINTS") + 1], ' ');
+  CHECK(std::stod(corner[0]) == Approx(3.5));
+  CHECK(std::stod(corner[1]) == Approx(-1.0));
+  CHECK(std::stod(corner[2]) == Approx(0.75));
+  const auto fixed = temp_file("shapes_fixed.vtk");
+  io::write_vtk_fixed(fixed.string(), f, 5.0);
+  const auto fixed_lines = lines_of(fixed);
+  CHECK(std::count(fixed_lines.begin(), fixed_lines.end(), std::string("POINTS 12 float")) == 1);  // the fixed box, the floor
+
+  const auto pov = temp_file("shapes.pov");
+  io::write_povray(pov.string(), f);
+  int sweeps = 0, walls = 0, coloured = 0;
+  for (const auto& l : lines_of(pov)) {
+    sweeps += l.rfind("sphere_sweep {", 0) == 0;
+    walls += l.rfind("box {", 0) == 0 && l.find("Wall") != std::string::npos;
+    coloured += l.rfind("box {", 0) == 0 && l.find("texture { S") != std::string::npos;
+  }
+  CHECK(sweeps == 1);
+  CHECK(walls == 1);
+  CHECK(coloured == 1);
 }

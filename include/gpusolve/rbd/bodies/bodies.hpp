@@ -47,6 +47,10 @@ struct Bodies {
   VecD1 radius;             // bounding-sphere radius (planes: +infinity)
   VecD2 aabb;               // n x 6: (min x, y, z, max x, y, z) of the bounding sphere
   VecD1 motion;             // running average of |v| + |w| (sleep heuristics, statistics)
+  // The shape kinds among the bodies (host side): collision detection compiles
+  // in the pairs of these only. BodyManager keeps it exact; a store filled by
+  // hand says all_shapes unless told less.
+  ShapeMask shapes = all_shapes;
 
   Bodies() = default;
   explicit Bodies(std::size_t n) { resize(n); }
@@ -76,6 +80,7 @@ struct Bodies {
   Bodies& operator=(const Bodies<D2, T>& o) {
     if (capacity_ != o.capacity()) *this = Bodies(o.capacity());
     n_ = o.size();
+    shapes = o.shapes;
     zip_fields(*this, o, [](auto& dst, const auto& src, std::size_t, bool) { dst = src; });
     return *this;
   }

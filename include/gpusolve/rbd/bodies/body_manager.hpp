@@ -85,8 +85,12 @@ class BodyManager {
       first = 0;
     }
     const std::size_t n = recs.size();
+    ShapeMask shapes = 0;
     for (std::size_t i = 0; i < n; ++i)
-      if (recs[i].status != removed) validate_body(recs[i], i);
+      if (recs[i].status != removed) {
+        validate_body(recs[i], i);
+        shapes |= shape_bit(recs[i].shape);
+      }
     // Growth reallocates (contents lost), so double to keep appends amortised.
     if (n > device_.capacity()) {
       const std::size_t cap = std::max(n, 2 * device_.capacity());
@@ -96,6 +100,7 @@ class BodyManager {
     }
     device_.resize(n);
     staging_.resize(n);
+    device_.shapes = staging_.shapes = shapes;
     first = std::min(first, n);
     for (std::size_t i = 0; i < n; ++i) pack(i, i >= first);
     update_derived(device::cpu{}, staging_.view(), 0, n);

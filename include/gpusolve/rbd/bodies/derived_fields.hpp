@@ -49,11 +49,32 @@ struct UpdateBody {
         const T x = b.shape_param(i, 0), y = b.shape_param(i, 1), z = b.shape_param(i, 2);
         return std::sqrt(x * x + y * y + z * z);
       }
+      case capsule:
+        return b.shape_param(i, 0) + b.shape_param(i, 1);
       default:  // a plane bounds nothing
         return std::numeric_limits<T>::infinity();
     }
   }
 };
+
+// The size penetration is measured against (statistics/accuracy.hpp), defined
+// once: a sphere's or capsule's radius, a box's smallest half extent; a plane
+// has none (+infinity), so a body on a plane is measured against the body.
+template <class View>
+GPUSOLVE_HD auto feature_size(const View& b, std::size_t i) {
+  using T = std::remove_cv_t<std::remove_reference_t<decltype(b.shape_param(i, 0))>>;
+  switch (b.shape[i]) {
+    case box: {
+      const T x = b.shape_param(i, 0), y = b.shape_param(i, 1), z = b.shape_param(i, 2);
+      const T xy = x < y ? x : y;
+      return xy < z ? xy : z;
+    }
+    case plane:
+      return std::numeric_limits<T>::infinity();
+    default:  // sphere, capsule
+      return b.shape_param(i, 0);
+  }
+}
 
 // Recomputes the derived fields of bodies [first, last) without touching motion
 // (after bodies were set from outside, e.g. by the BodyManager).

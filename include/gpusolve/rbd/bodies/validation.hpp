@@ -91,8 +91,8 @@ void require_finite(const std::array<T, N>& a, std::size_t body, const char* fie
 }  // namespace detail
 
 // Throws InvalidBodyError naming `index` and the first offending field. Checks:
-// finite state; positive sphere radius and box half extents; unit plane normal;
-// boxes and planes fixed; fixed bodies massless (0 inverse mass and inertia);
+// finite state; positive sphere radius, box half extents and capsule radius
+// and half length; unit plane normal; planes fixed; fixed bodies massless (0 inverse mass and inertia);
 // moving bodies with a positive finite mass and a positive inertia diagonal.
 template <class T>
 void validate_body(const Body<T>& b, std::size_t index) {
@@ -124,12 +124,15 @@ void validate_body(const Body<T>& b, std::size_t index) {
       if (std::abs(nn - T(1)) > T(1e-4)) throw InvalidBodyError(index, "normal", "must have unit length");
       break;
     }
+    case capsule:
+      if (!(p[0] > 0)) throw InvalidBodyError(index, "radius", "must be positive");
+      if (!(p[1] > 0)) throw InvalidBodyError(index, "half_length", "must be positive (a sphere has none)");
+      break;
     default:
       throw InvalidBodyError(index, "shape", "is not a ShapeKind");
   }
   const bool moving = b.status == active;
-  if (b.shape != sphere && moving)
-    throw InvalidBodyError(index, "status", "boxes and planes must be fixed");
+  if (b.shape == plane && moving) throw InvalidBodyError(index, "status", "planes must be fixed");
   if (!std::isfinite(b.inv_mass) || b.inv_mass < 0)
     throw InvalidBodyError(index, "mass", "must be positive and finite");
   if (moving) {

@@ -1,6 +1,8 @@
-// Broad phase: a uniform hashed grid over the spheres, built by counting the
-// spheres of each bucket and a scan, queued on a stream (no host wait); the
-// same kernels on both backends.
+// Broad phase: a uniform hashed grid over the bodies' bounding spheres, sized
+// by the moving bodies, built by counting the bodies of each bucket and a
+// scan, queued on a stream (no host wait); the same kernels on both backends.
+// Fixed bodies too large for its cells, and planes, are the obstacles that
+// collision detection tests against every moving body.
 #pragma once
 
 #include <cmath>
@@ -21,7 +23,7 @@
 
 namespace gpusolve::rbd {
 
-// A sphere pair (a, b), a < b, as one sortable key: a in the high 32 bits.
+// A body pair (a, b) as one sortable key: a in the high 32 bits.
 GPUSOLVE_HD inline std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
   return (std::uint64_t(a) << 32) | b;
 }
@@ -30,18 +32,25 @@ GPUSOLVE_HD inline std::uint32_t pair_b(std::uint64_t k) { return std::uint32_t(
 
 namespace detail {
 
-// Bodies on the grid: spheres that are not removed, at a finite position (a
-// NaN or infinity cannot be placed in a cell; detection reports the body).
+// Bodies that may go on the grid: not removed, not a plane, at a finite
+// position (a NaN or infinity cannot be placed in a cell; detection reports the body).
 template <class View>
-GPUSOLVE_HD bool on_grid(const View& b, std::size_t i) {
-  if (b.shape[i] != sphere || b.status[i] == removed) return false;
+GPUSOLVE_HD bool grid_candidate(const View& b, std::size_t i) {
+  if (b.shape[i] == plane || b.status[i] == removed) return false;
   for (std::size_t c = 0; c < 3; ++c)
     if (!(b.pos(i, c) - b.pos(i, c) == 0)) return false;  // NaN and inf give NaN
   return true;
 }
 
-// A sphere's centre and radius, copied in the grid's sorted order so that a
-// walk reads a neighbour in one load, without its body index first.
+// A body's bounding diameter plus the margin: the smallest cell that holds it.
+template <class View, class T>
+GPUSOLVE_HD T reach_of(const View& b, std::size_t i, T margin) {
+  return 2 * b.radius[i] + margin;
+}
+
+// A sphere's centre and radius (another body's bounding sphere), copied in the
+// grid's sorted order so that a walk reads a neighbour in one load, without
+// its body index first.
 template <class T>
 struct alignas(4 * sizeof(T)) GridSphere {
   T x[3], r;
@@ -64,13 +73,15 @@ GPUSOLVE_HD GridSphere<T> grid_sphere(const View& b, std::size_t i) {
   return {{b.pos(i, 0), b.pos(i, 1), b.pos(i, 2)}, b.radius[i]};
 }
 
+// The reach of a moving body on the grid (0 for any other): the cell size is
+// their maximum; +inf when not finite.
 template <class View, class T>
-struct SphereReach {  // diameter plus margin: the smallest admissible cell size; +inf when not finite
+struct BodyReach {
   View b;
   T margin;
   GPUSOLVE_HD T operator()(std::size_t i) const {
-    if (!on_grid(b, i)) return T(0);
-    const T reach = 2 * b.radius[i] + margin;
+    if (b.status[i] != active || !grid_candidate(b, i)) return T(0);
+    const T reach = reach_of(b, i, margin);
     return reach <= std::numeric_limits<T>::max() ? reach : std::numeric_limits<T>::infinity();
   }
 };
@@ -78,16 +89,21 @@ struct SphereReach {  // diameter plus margin: the smallest admissible cell size
 // The grid: cell (x, y, z) = floor(pos / cell), hashed into `buckets` (a power
 // of two). The cell size is read in the kernel from the backend's memory, where
 // the reduction left it, so the host never waits for it; a cell that is not a
-// positive finite size (no spheres, or a radius that is not finite) leaves
-// every sphere off the grid.
+// positive finite size (nothing moves, or a radius that is not finite) leaves
+// every body off the grid.
 template <class T>
 struct GridGeometry {
-  T inv_cell;
+  T cell, inv_cell;
   std::uint32_t mask;
   bool valid;
-  GPUSOLVE_HD GridGeometry(const T* cell, std::uint32_t bucket_mask)
-      : inv_cell(0), mask(bucket_mask), valid(*cell > T(0) && *cell <= std::numeric_limits<T>::max()) {
-    if (valid) inv_cell = T(1) / *cell;
+  GPUSOLVE_HD GridGeometry(const T* cell_size, std::uint32_t bucket_mask)
+      : cell(*cell_size), inv_cell(0), mask(bucket_mask), valid(cell > T(0) && cell <= std::numeric_limits<T>::max()) {
+    if (valid) inv_cell = T(1) / cell;
+  }
+  // Body i goes on the grid: a candidate that moves or fits in a cell.
+  template <class View>
+  GPUSOLVE_HD bool holds(const View& b, std::size_t i, T margin) const {
+    return valid && grid_candidate(b, i) && (b.status[i] == active || reach_of(b, i, margin) <= cell);
   }
   GPUSOLVE_HD std::int32_t coord(T x) const { return std::int32_t(std::floor(x * inv_cell)); }
   GPUSOLVE_HD std::uint32_t hash(std::int32_t x, std::int32_t y, std::int32_t z) const {
@@ -96,21 +112,22 @@ struct GridGeometry {
   }
 };
 
-// A counting sort of the spheres by bucket, in two passes around a scan of the
-// counts. A sphere's rank in its bucket comes from an atomic counter, so the
+// A counting sort of the bodies by bucket, in two passes around a scan of the
+// counts. A body's rank in its bucket comes from an atomic counter, so the
 // order within a bucket differs from run to run; the walks sort what they find,
 // so no result depends on it. (A radix sort's passes cost several microseconds
 // each at any size; these two passes are short.)
 template <class View, class T>
-struct BinSpheres {  // hash[i], and rank[i] within its bucket; first[0] = 0
+struct BinBodies {  // hash[i], and rank[i] within its bucket; first[0] = 0
   View b;
   const T* cell;
+  T margin;
   std::uint32_t mask;
   std::uint32_t *hash, *rank, *count, *first;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     const GridGeometry<T> g(cell, mask);
     if (i == 0) first[0] = 0;
-    if (!g.valid || !on_grid(b, i)) {
+    if (!g.holds(b, i, margin)) {
       hash[i] = mask + 1;  // past every bucket: never placed, never walked
       return;
     }
@@ -121,10 +138,10 @@ struct BinSpheres {  // hash[i], and rank[i] within its bucket; first[0] = 0
   }
 };
 
-// Bucket h holds entries [first[h], first[h + 1]); sphere i goes to
-// first[hash[i]] + rank[i], with its centre and radius beside its index.
+// Bucket h holds entries [first[h], first[h + 1]); body i goes to
+// first[hash[i]] + rank[i], with its bounding sphere beside its index.
 template <class View, class T>
-struct PlaceSpheres {
+struct PlaceBodies {
   View b;
   const std::uint32_t *hash, *rank, *first;
   std::uint32_t mask;
@@ -139,9 +156,10 @@ struct PlaceSpheres {
   }
 };
 
-// Visits every grid sphere j > i near sphere i, in the 27 cells around i's,
-// in bucket order: visit(j, its packed sphere). A bucket two neighbour cells hash to is visited once;
-// spheres that share a bucket only by a hash collision fail the distance test.
+// Visits every grid body j > i whose bounding sphere is near body i's, in the
+// 27 cells around i's, in bucket order: visit(j, its packed bounding sphere).
+// A bucket two neighbour cells hash to is visited once; bodies that share a
+// bucket only by a hash collision fail the distance test.
 // A walk is a chain of dependent loads: the 27 buckets' ranges are loaded
 // together, and an entry's index and sphere are independent loads.
 template <class View, class T>
@@ -157,7 +175,7 @@ struct NeighbourWalk {
   template <class F>
   GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
     const GridGeometry<T> g(cell, mask);
-    if (!g.valid || !on_grid(b, i)) return;
+    if (!g.holds(b, i, margin)) return;
     const GridSphere<T> me = grid_sphere<View, T>(b, i);
     const std::int32_t x = g.coord(me.x[0]), y = g.coord(me.x[1]), z = g.coord(me.x[2]);
     // Cell c = 9 (dz + 1) + 3 (dy + 1) + dx + 1; bit c of dup: an earlier cell has its bucket.
@@ -193,9 +211,9 @@ struct CountPairs {
   }
 };
 
-// Writes sphere i's pairs at [offset[i] - count[i], offset[i]) and sorts them
-// there by b (the walk meets them in bucket order; a sphere has few), so the
-// list comes out in pair_key order without a global sort. A sphere whose pairs
+// Writes body i's pairs at [offset[i] - count[i], offset[i]) and sorts them
+// there by b (the walk meets them in bucket order; a body has few), so the
+// list comes out in pair_key order without a global sort. A body whose pairs
 // would pass `capacity` writes nothing: the caller grows the list and repeats.
 template <class Walk>
 struct WritePairs {
@@ -220,9 +238,11 @@ struct WritePairs {
 
 }  // namespace detail
 
-// Finds every pair of spheres (not removed) whose surfaces are closer than a
-// margin, on the backend of the bodies. The cell size is the largest sphere
-// diameter plus the margin, so near spheres always sit in neighbouring cells.
+// Finds every pair of bodies on the grid whose bounding spheres are closer
+// than a margin, on the backend of the bodies. The cell size is the largest
+// bounding diameter of a moving body plus the margin, so near bodies always
+// sit in neighbouring cells; a fixed body larger than that is left off
+// (GridGeometry::holds), for the caller to test against every moving body.
 // queue_grid() builds the grid for kernels that walk it (collision detection);
 // queue() also lists the pairs. Both only queue device work: the pair count stays in the backend's memory
 // until a caller reads it; the list has a capacity that grows geometrically
@@ -239,9 +259,9 @@ class UniformGrid {
 
   // Queues the grid's rebuild. Afterwards, in stream order, cell() holds the
   // cell size (+inf when a radius or the margin is not finite) and walk(b,
-  // margin) visits each sphere's near neighbours in kernels (NeighbourWalk).
+  // margin) visits each body's near neighbours in kernels (NeighbourWalk).
   // A caller that reduces the bodies itself may pass `cell`, where its
-  // reduction leaves SphereReach's maximum in stream order; cell() is then that.
+  // reduction leaves BodyReach's maximum in stream order; cell() is then that.
   Walk queue_grid(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}, const T* cell = nullptr) {
     const View b = bodies.view();
     n_ = b.size();
@@ -256,15 +276,15 @@ class UniformGrid {
     const Walk walk{b, cell_used_, buckets - 1, margin, index_.data(), spheres_.data(), first_.data()};
     if (n_ == 0) return walk;
     const Device dev{};
-    if (!cell) algorithms_.max_into(n_, detail::SphereReach<View, T>{b, margin}, T(0), cell_.data(), stream);
+    if (!cell) algorithms_.max_into(n_, detail::BodyReach<View, T>{b, margin}, T(0), cell_.data(), stream);
     bucket_count_.fill(0u, stream);
     launch(dev, n_,
-           detail::BinSpheres<View, T>{b, cell_used_, buckets - 1, hash_.data(), rank_.data(), bucket_count_.data(),
+           detail::BinBodies<View, T>{b, cell_used_, margin, buckets - 1, hash_.data(), rank_.data(), bucket_count_.data(),
                                        first_.data()},
            stream);
     algorithms_.inclusive_sum(bucket_count_.data(), first_.data() + 1, buckets, stream);
     launch(dev, n_,
-           detail::PlaceSpheres<View, T>{b, hash_.data(), rank_.data(), first_.data(), buckets - 1, index_.data(),
+           detail::PlaceBodies<View, T>{b, hash_.data(), rank_.data(), first_.data(), buckets - 1, index_.data(),
                                          spheres_.data()},
            stream);
     return walk;
@@ -273,12 +293,12 @@ class UniformGrid {
   // Queues the grid's rebuild and the pair list. Afterwards, in stream order,
   // pair_count() holds the number of pairs and cell() the cell size; when the
   // count is at most capacity(), pairs() lists them sorted by (a, b), a < b:
-  // pair_key order, those of sphere i at [pair_end(i) - pair_count_of(i), pair_end(i)).
+  // pair_key order, those of body i at [pair_end(i) - pair_count_of(i), pair_end(i)).
   void queue(Bodies<Device, T>& bodies, T margin, stream_t stream = stream_t{}) {
     const Walk walk = queue_grid(bodies, margin, stream);
     if (n_ == 0) return;
     for (D1<std::uint32_t>* v : {&count_, &offset_}) gpusolve::detail::ensure_size(*v, n_);
-    if (pairs_.size_x() < 4 * n_) reserve(4 * n_);  // a pile has about 6 per sphere: at most one regrowth
+    if (pairs_.size_x() < 4 * n_) reserve(4 * n_);  // a pile has about 6 per body: at most one regrowth
     const Device dev{};
     launch(dev, n_, detail::CountPairs<Walk>{walk, count_.data()}, stream);
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n_, stream);
@@ -293,7 +313,7 @@ class UniformGrid {
       queue(bodies, margin, stream);
       if (n_ == 0) return count_read_ = 0;
       if (!(detail::read_back<Device>(cell_.data(), 0, stream) <= std::numeric_limits<T>::max()))
-        throw InvalidArgumentError("gpusolve: UniformGrid: a sphere radius or the margin is not finite");
+        throw InvalidArgumentError("gpusolve: UniformGrid: a body's bounding radius or the margin is not finite");
       count_read_ = detail::read_back<Device>(offset_.data(), n_ - 1, stream);
       if (count_read_ <= capacity()) return count_read_;
       reserve(count_read_);
@@ -306,7 +326,7 @@ class UniformGrid {
 
   // In the backend's memory, valid in stream order after queue():
   const std::uint64_t* pairs() const { return pairs_.data(); }
-  const std::uint32_t* pair_end() const { return offset_.data(); }  // per sphere, inclusive scan of the counts
+  const std::uint32_t* pair_end() const { return offset_.data(); }  // per body, inclusive scan of the counts
   const std::uint32_t* pair_count_of() const { return count_.data(); }
   const std::uint32_t* pair_count() const { return n_ ? offset_.data() + (n_ - 1) : nullptr; }
   const T* cell() const { return cell_used_; }

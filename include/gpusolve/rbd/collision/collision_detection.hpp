@@ -1,7 +1,8 @@
 // Collision detection where the bodies live: the broad phase's grid walked for
-// sphere pairs, every active sphere against the few obstacles (planes, boxes),
-// the narrow phase, and the contacts written by a count pass, a scan and a
-// write pass, all queued on one stream; the host reads the counts once per step.
+// pairs of bounding spheres, every moving body against the few obstacles
+// (planes, large fixed bodies), the shape-pair table for their manifolds, and
+// the contacts written by a count pass, a scan and a write pass, all queued on
+// one stream; the host reads the counts once per step.
 #pragma once
 
 #include <cstddef>
@@ -28,28 +29,39 @@
 namespace gpusolve::rbd {
 namespace detail {
 
-// Appends body i to the obstacles when it is a plane or box taking part. The
-// list's order differs from run to run (an atomic counter, cleared before);
-// contacts come out sorted by b whatever the order a walk meets them in.
-template <class View>
+// Body i is an obstacle: a plane, or a fixed body too large for the grid's
+// cells, not removed. Obstacles are met by every moving body on the grid.
+template <class View, class T>
+GPUSOLVE_HD bool obstacle(const View& b, std::size_t i, const GridGeometry<T>& g, T margin) {
+  if (b.status[i] != fixed) return false;  // a moving body is always on the grid
+  return b.shape[i] == plane || (grid_candidate(b, i) && !g.holds(b, i, margin));
+}
+
+// Appends body i to the obstacles. The list's order differs from run to run
+// (an atomic counter, cleared before); contacts come out sorted by b whatever
+// the order a walk meets them in.
+template <class View, class T>
 struct ListObstacles {
   View b;
+  const T* cell;
+  T margin;
   std::uint32_t *obstacles, *count;
   GPUSOLVE_HD void operator()(std::size_t i) const {
-    if (b.shape[i] == sphere || b.status[i] == removed) return;
+    if (!obstacle(b, i, GridGeometry<T>(cell, 0u), margin)) return;
     const std::uint32_t k = cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(*count).fetch_add(
         1u, cuda::std::memory_order_relaxed);
     obstacles[k] = std::uint32_t(i);
   }
 };
 
-// The contacts of sphere i as body a: its grid neighbours j > i (a fixed
-// sphere only with active ones) and the obstacles (active spheres only),
-// those whose gap is below the margin. visit(j) meets them in the grid's
-// order; geometry(i, j) is their contact geometry. A grid neighbour's gap is
-// computed from the grid's packed copies of the two spheres (the same floats
-// as geometry's), so the walk loads nothing more of j.
-template <class View, class T>
+// The contact pairs of body i as body a: its grid neighbours j > i (a fixed
+// body only with moving ones) and, for a moving body, the obstacles, those
+// whose manifold has points (gaps below the margin). visit(j, points) meets
+// them in the grid's order; manifold(i, j) is their manifold, from the table
+// over the kinds in M. Between two spheres the gap comes from the grid's
+// packed copies (the same floats as the manifold's), so the walk loads
+// nothing more of j; where M holds spheres and planes only, no other pair is compiled in.
+template <class View, class T, ShapeMask M>
 struct ContactWalk {
   View b;
   T margin;
@@ -57,44 +69,53 @@ struct ContactWalk {
   const std::uint32_t* obstacles;       // body indices (ListObstacles)
   const std::uint32_t* obstacle_count;  // their number
 
-  GPUSOLVE_HD ContactGeometry<T> geometry(std::size_t i, std::uint32_t j) const {
-    const BodyOffsets<T> off(b);
-    const math::Vector3<T> pa(math::Vector3Global<T>(b.pos, off.v3, i));
-    const math::Vector3<T> pb(math::Vector3Global<T>(b.pos, off.v3, j));
-    if (b.shape[j] == sphere) return sphere_sphere(pa, b.radius[i], pb, b.radius[j]);
-    if (b.shape[j] == plane) {
-      const math::Vector3<T> n(b.shape_param(j, 0), b.shape_param(j, 1), b.shape_param(j, 2));
-      return sphere_plane(pa, b.radius[i], n, b.shape_param(j, 3), pb);
+  static constexpr bool spheres_only = (M & ~spheres_and_planes) == 0;
+
+  GPUSOLVE_HD Manifold<T> manifold(std::size_t i, std::uint32_t j) const {
+    if constexpr (spheres_only) {  // body i is a sphere on the grid, j a sphere or a plane
+      const math::Vector3<T> pa = math::load3<T>(b.pos, i);
+      if (b.shape[j] == plane)
+        return within_margin(sphere_plane(pa, b.radius[i], math::Vector3<T>(b.shape_param(j, 0), b.shape_param(j, 1),
+                                                                           b.shape_param(j, 2)),
+                                          b.shape_param(j, 3)),
+                             margin);
+      return within_margin(sphere_sphere(pa, b.radius[i], math::load3<T>(b.pos, j), b.radius[j]), margin);
+    } else {
+      return collide<M, T>(b.shape[i], placed_shape<T>(b, i), b.shape[j], placed_shape<T>(b, j), margin);
     }
-    const math::Vector3<T> h(b.shape_param(j, 0), b.shape_param(j, 1), b.shape_param(j, 2));
-    return sphere_box(pa, b.radius[i], pb, math::Matrix3x3<T>(math::Matrix3x3Global<T>(b.R, off.m9, j)), h);
   }
 
   template <class F>
   GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
-    if (!on_grid(b, i)) return;
+    const GridGeometry<T> g(grid.cell, grid.mask);
+    if (!g.holds(b, i, margin)) return;
     const bool active_a = b.status[i] == active;
+    const bool sphere_a = spheres_only || b.shape[i] == sphere;
     const GridSphere<T> me = grid_sphere<View, T>(b, i);
     const math::Vector3<T> pa(me.x[0], me.x[1], me.x[2]);
     grid(i, [&](std::uint32_t j, const GridSphere<T>& o) {
-      if ((active_a || b.status[j] == active) &&
-          sphere_sphere(pa, me.r, math::Vector3<T>(o.x[0], o.x[1], o.x[2]), o.r).gap < margin)
-        visit(j);
+      if (!active_a && b.status[j] != active) return;
+      if (sphere_a && (spheres_only || b.shape[j] == sphere)) {
+        if (sphere_sphere(pa, me.r, math::Vector3<T>(o.x[0], o.x[1], o.x[2]), o.r).points[0].gap < margin)
+          visit(j, 1);
+      } else if (const int k = manifold(i, j).count) {
+        visit(j, std::uint32_t(k));
+      }
     });
     if (!active_a) return;
     for (std::uint32_t k = 0; k < *obstacle_count; ++k)
-      if (geometry(i, obstacles[k]).gap < margin) visit(obstacles[k]);
+      if (const int p = manifold(i, obstacles[k]).count) visit(obstacles[k], std::uint32_t(p));
   }
 };
 
-// The contacts a count pass keeps per sphere (the b bodies, sorted), so that
-// the write pass reads them instead of walking the grid a second time. An
-// equal sphere touches at most 12 others, about half of them with a larger
-// index, and a few walls; a sphere with more contacts (a large one among small
-// ones, or one in a corner of a pile) walks again.
+// The pairs a count pass keeps per body (the b bodies, sorted), so that the
+// write pass reads them instead of walking the grid a second time. An equal
+// sphere touches at most 12 others, about half of them with a larger index,
+// and a few walls; a body with more pairs (a large one among small ones, or
+// one in a corner of a pile) walks again.
 inline constexpr std::uint32_t kept_contacts = 8;
 
-// Insertion sort of a sphere's few bodies, in place.
+// Insertion sort of a body's few partners, in place.
 template <class Get, class Set>
 GPUSOLVE_HD void sort_few(std::uint32_t first, std::uint32_t last, Get get, Set set) {
   for (std::uint32_t p = first + 1; p < last; ++p) {
@@ -120,25 +141,30 @@ GPUSOLVE_HD inline void insert_sorted(std::uint32_t (&found)[kept_contacts], std
   }
 }
 
-// Counts sphere i's contacts and keeps the first kept_contacts of them, sorted,
-// at kept[c * n + i] (c = 0, 1, ...: a warp's stores are contiguous).
+// Counts body i's contacts (count[i]) and its partners (pairs[i], where
+// partners may have more than one point each) and keeps the first
+// kept_contacts partners, sorted, at kept[c * n + i] (c = 0, 1, ...: a warp's
+// stores are contiguous).
 template <class Walk>
 struct CountContacts {
   Walk walk;
   std::uint32_t* count;
+  std::uint32_t* pairs;  // unused where every pair is one sphere contact (Walk::spheres_only)
   std::uint32_t* kept;
   std::size_t n;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     std::uint32_t found[kept_contacts] = {};
-    std::uint32_t c = 0;
-    walk(i, [&](std::uint32_t j) {
-      if (c < kept_contacts) insert_sorted(found, c, j);
-      ++c;
+    std::uint32_t partners = 0, c = 0;
+    walk(i, [&](std::uint32_t j, std::uint32_t points) {
+      if (partners < kept_contacts) insert_sorted(found, partners, j);
+      ++partners;
+      c += points;
     });
     GPUSOLVE_UNROLL
     for (std::uint32_t p = 0; p < kept_contacts; ++p)
-      if (p < c) kept[p * n + i] = found[p];
+      if (p < partners) kept[p * n + i] = found[p];
     count[i] = c;
+    if constexpr (!Walk::spheres_only) pairs[i] = partners;
   }
 };
 
@@ -158,10 +184,10 @@ template <class T>
 void require_usable(const DetectionSummary<T>& s) {
   if (s.non_finite != ~std::uint64_t(0)) throw non_finite_state(s.non_finite);
   if (!(s.cell <= std::numeric_limits<T>::max()))
-    throw InvalidArgumentError("gpusolve: CollisionDetection: a sphere radius or the margin is not finite");
+    throw InvalidArgumentError("gpusolve: CollisionDetection: a bounding radius or the margin is not finite");
 }
 
-// One reduction over the bodies for the grid's cell size (SphereReach's
+// One reduction over the bodies for the grid's cell size (BodyReach's
 // maximum) and the first body whose state is not finite (NonFiniteKey's
 // minimum), where two would each evaluate and reduce.
 template <class T>
@@ -171,7 +197,7 @@ struct BodyScan {
 };
 template <class View, class T>
 struct ScanBody {
-  SphereReach<View, T> reach;
+  BodyReach<View, T> reach;
   NonFiniteKey<View> key;
   GPUSOLVE_HD BodyScan<T> operator()(std::size_t i) const { return {reach(i), key(i)}; }
 };
@@ -200,39 +226,87 @@ struct Summarize {
   }
 };
 
-// Writes sphere i's contacts at [offset[i] - count[i], offset[i]) in
-// increasing order of body b, unless that passes the contacts' capacity (their
-// view's size): the caller grows and repeats. The bodies come from the count
-// pass's kept list, or, for a sphere with more, from a second walk sorted in
-// place in the b column, so the list comes out in (a, b) order without a
-// global sort. Sphere 0's thread also writes the summary the host reads.
+// Writes body i's contacts at [offset[i] - count[i], offset[i]) in increasing
+// order of body b, each pair's manifold points in their order, unless that
+// passes the contacts' capacity (their view's size): the caller grows and
+// repeats. The partners come from the count pass's kept list, or, for a body
+// with more, from a second walk whose partners are listed in the b column and
+// sorted in place; then the points go in from the last pair to the first, so
+// that no partner is overwritten before it is read. Where a pair's manifold
+// gives a different number of points than it did in the count pass (the two
+// passes compile the same arithmetic separately), the range still fills exactly:
+// extra points are dropped, missing ones are inert (pad). Body 0's
+// thread also writes the summary the host reads.
 template <class Walk, class ContactView, class T>
 struct WriteContacts {
   Walk walk;
   const std::uint32_t* offset;  // inclusive scan of the counts
   const std::uint32_t* count;
+  const std::uint32_t* pairs;   // Walk::spheres_only: the counts themselves
   const std::uint32_t* kept;
   std::size_t n;
   ContactView contacts;
   T mu;
   Summarize<T> summarize;
+
   GPUSOLVE_HD void operator()(std::size_t i) const {
     if (i == 0) summarize(0);
     if (offset[i] > contacts.size()) return;
     const std::uint32_t first = offset[i] - count[i], last = offset[i];
-    if (count[i] <= kept_contacts) {
-      for (std::uint32_t p = first; p < last; ++p) contacts.b[p] = kept[(p - first) * n + i];
-    } else {
+    const std::uint32_t partners = Walk::spheres_only ? count[i] : pairs[i];
+    if constexpr (Walk::spheres_only) {  // one point per pair: no manifold loop
+      if (partners <= kept_contacts) {
+        for (std::uint32_t p = 0; p < partners; ++p) write_one(first + p, i, kept[p * n + i]);
+        return;
+      }
+    }
+    if (partners <= kept_contacts) {
       std::uint32_t o = first;
-      walk(i, [&](std::uint32_t j) { contacts.b[o++] = j; });
-      sort_few(first, last, [&](std::uint32_t p) { return std::uint32_t(contacts.b[p]); },
-               [&](std::uint32_t p, std::uint32_t j) { contacts.b[p] = j; });
+      for (std::uint32_t p = 0; p < partners; ++p) {
+        const std::uint32_t j = kept[p * n + i];
+        const Manifold<T> m = walk.manifold(i, j);
+        for (int k = 0; k < m.count && o < last; ++k) write(o++, i, j, m, k);
+        if (p + 1 == partners) pad(o, last, i, j, m.n);
+      }
+      return;
     }
-    for (std::uint32_t p = first; p < last; ++p) {
-      const std::uint32_t j = contacts.b[p];
-      const ContactGeometry<T> g = walk.geometry(i, j);
-      contacts.set(p, std::uint32_t(i), j, g.n, g.ra, g.rb, g.gap, mu);
+    std::uint32_t o = first;
+    walk(i, [&](std::uint32_t j, std::uint32_t) { contacts.b[o++] = j; });
+    sort_few(first, first + partners, [&](std::uint32_t p) { return std::uint32_t(contacts.b[p]); },
+             [&](std::uint32_t p, std::uint32_t j) { contacts.b[p] = j; });
+    std::uint32_t end = last;  // the points of pairs p.. go to [end, last)
+    for (std::uint32_t p = partners; p-- > 0;) {
+      const std::uint32_t j = contacts.b[first + p];
+      const Manifold<T> m = walk.manifold(i, j);
+      for (int k = m.count; k-- > 0 && end > first + p;) write(--end, i, j, m, k);
+      if (p == 0) pad(first, end, i, j, m.n);
     }
+  }
+
+  // A sphere pair's one point (or an inert contact where it is no longer found).
+  GPUSOLVE_HD void write_one(std::uint32_t o, std::size_t i, std::uint32_t j) const {
+    const Manifold<T> m = walk.manifold(i, j);
+    if (m.count > 0)
+      write(o, i, j, m, 0);
+    else
+      pad(o, o + 1, i, j, m.n);
+  }
+
+  GPUSOLVE_HD void write(std::uint32_t o, std::size_t i, std::uint32_t j, const Manifold<T>& m, int k) const {
+    const ManifoldPoint<T>& q = m.points[k];
+    const math::Vector3<T> pa(walk.b.pos(i, 0), walk.b.pos(i, 1), walk.b.pos(i, 2));
+    const math::Vector3<T> pb(walk.b.pos(j, 0), walk.b.pos(j, 1), walk.b.pos(j, 2));
+    contacts.set(o, std::uint32_t(i), j, m.n, math::Vector3<T>(q.p - pa), math::Vector3<T>(q.p - pb), q.gap, mu,
+                 q.feature);
+  }
+  // Fills [from, to) with inert contacts of the pair (i, j), where the write
+  // pass found fewer points than the count pass.
+  GPUSOLVE_HD void pad(std::uint32_t from, std::uint32_t to, std::size_t i, std::uint32_t j,
+                       const math::Vector3<T>& n) const {
+    const math::Vector3<T> zero, up(T(0), T(0), T(1));
+    const bool unit = math::dot(n, n) > T(0.5);
+    const T apart = walk.margin + 2 * (walk.b.radius[i] + walk.b.radius[j]);
+    for (std::uint32_t o = from; o < to; ++o) contacts.set(o, std::uint32_t(i), j, unit ? n : up, zero, zero, apart, mu, inert_feature);
   }
 };
 
@@ -247,15 +321,18 @@ struct DetectionKey {
   ContactView contacts;
   T margin, mu;
   std::uint32_t* hold;
+  ShapeMask shapes;
 };
 
 }  // namespace detail
 
 // Rebuilds the contacts of the bodies every step, on their backend. A contact
 // is made wherever two surfaces are closer than `margin` (not only where they
-// touch), so the solver can stop bodies before they meet. Body a is always a
-// sphere; contacts come sorted by (a, b) on every backend. Scratch storage is
-// kept between steps.
+// touch), so the solver can stop bodies before they meet. A pair of shapes
+// gives up to max_manifold_points contacts; contacts come sorted by (a, b)
+// on every backend, a pair's points in their manifold's order. Where the
+// bodies hold spheres and planes only (Bodies::shapes), no other shape pair
+// is compiled into the kernels that run. Scratch storage is kept between steps.
 template <class Device, class T = float>
 class CollisionDetection {
  public:
@@ -329,6 +406,7 @@ class CollisionDetection {
     gpusolve::detail::ensure_size(obstacle_count_, 1);
     gpusolve::detail::ensure_size(count_, n);
     gpusolve::detail::ensure_size(offset_, n);
+    gpusolve::detail::ensure_size(pairs_, n);
     gpusolve::detail::ensure_size(kept_, detail::kept_contacts * n);
     gpusolve::detail::ensure_size(summary_, 1);
     gpusolve::detail::ensure_size(scan_, 1);
@@ -346,7 +424,7 @@ class CollisionDetection {
     const auto cv = contacts.view();
     auto queue = [&](stream_t q) { queue_contacts(bodies, cv, margin, mu, hold, q); };
     if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
-      const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, mu, hold};
+      const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, mu, hold, bodies.shapes};
       graph_.run(key, queue, stream);
     } else {  // scratch may have moved: no kept graph may point to it
       graph_.forget();
@@ -358,6 +436,15 @@ class CollisionDetection {
   template <class CView>
   void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, T mu, std::uint32_t* hold,
                       stream_t stream) {
+    if ((bodies.shapes & ~spheres_and_planes) == 0)
+      queue_contacts<spheres_and_planes>(bodies, c, margin, mu, hold, stream);
+    else
+      queue_contacts<all_shapes>(bodies, c, margin, mu, hold, stream);
+  }
+
+  template <ShapeMask M, class CView>
+  void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, T mu, std::uint32_t* hold,
+                      stream_t stream) {
     const View b = bodies.view();
     const std::size_t n = b.size();
     const Device dev{};
@@ -365,20 +452,21 @@ class CollisionDetection {
                             detail::BodyScan<T>{T(0), ~std::uint64_t(0)}, detail::BodyScanOp{}, scan_.data(), stream);
     const auto grid = grid_.queue_grid(bodies, margin, stream, &scan_.data()->cell);
     obstacle_count_.fill(0u, stream);
-    launch(dev, n, detail::ListObstacles<View>{b, obstacles_.data(), obstacle_count_.data()}, stream);
-    using Walk = detail::ContactWalk<View, T>;
+    launch(dev, n,
+           detail::ListObstacles<View, T>{b, grid.cell, margin, obstacles_.data(), obstacle_count_.data()}, stream);
+    using Walk = detail::ContactWalk<View, T, M>;
     const Walk walk{b, margin, grid, obstacles_.data(), obstacle_count_.data()};
-    launch(dev, n, detail::CountContacts<Walk>{walk, count_.data(), kept_.data(), n}, stream);
+    launch(dev, n, detail::CountContacts<Walk>{walk, count_.data(), pairs_.data(), kept_.data(), n}, stream);
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
     launch(dev, n,
-           detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), kept_.data(), n, c, mu,
+           detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), pairs_.data(), kept_.data(), n, c, mu,
                                                  {offset_.data() + (n - 1), scan_.data(), summary_.data(), hold,
                                                   c.bound()}},
            stream);
   }
 
   UniformGrid<Device, T> grid_;
-  D1<std::uint32_t> obstacles_, obstacle_count_, count_, offset_, kept_;
+  D1<std::uint32_t> obstacles_, obstacle_count_, count_, offset_, pairs_, kept_;
   D1<detail::BodyScan<T>> scan_;
   D1<detail::DetectionSummary<T>> summary_;
   detail::DeviceAlgorithms<Device> algorithms_;

@@ -1,81 +1,115 @@
-// Narrow phase: the contact geometry of sphere-sphere, sphere-plane and
-// sphere-box pairs (thesis Fig. 5): normal, offsets to the contact point, gap.
+// Narrow phase: the shape-pair table. One function per pair of shape kinds,
+// each in its own header under pairs/, registered here once (as Box2D v3's
+// contact table and Jolt's CollisionDispatch do); the reversed pair is the
+// same function with the bodies swapped and the normal turned.
 #pragma once
 
-#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
+#include "gpusolve/rbd/bodies/shapes.hpp"
+#include "gpusolve/rbd/collision/manifold.hpp"
+#include "gpusolve/rbd/collision/pairs/box_box.hpp"
+#include "gpusolve/rbd/collision/pairs/box_plane.hpp"
+#include "gpusolve/rbd/collision/pairs/capsule_box.hpp"
+#include "gpusolve/rbd/collision/pairs/capsule_capsule.hpp"
+#include "gpusolve/rbd/collision/pairs/capsule_plane.hpp"
+#include "gpusolve/rbd/collision/pairs/sphere_box.hpp"
+#include "gpusolve/rbd/collision/pairs/sphere_capsule.hpp"
+#include "gpusolve/rbd/collision/pairs/sphere_plane.hpp"
+#include "gpusolve/rbd/collision/pairs/sphere_sphere.hpp"
+#include "gpusolve/rbd/collision/placed_shape.hpp"
 
 namespace gpusolve::rbd {
 
-// The geometry of one contact between body a (a sphere) and body b. n points
-// from b to a; ra and rb go from the centres to the contact point, which lies
-// midway between the two surfaces; gap is the distance between the surfaces
-// along n (negative when they overlap).
-template <class T>
-struct ContactGeometry {
-  math::Vector3<T> n, ra, rb;
-  T gap;
-};
+// The table: ShapePair<A, B>::collide(a, b, margin) for kinds A <= B, the
+// manifold of a (kind A) against b (kind B), points whose gap is below the
+// margin. A pair without an entry is an incomplete type: using it does not compile.
+template <ShapeKind A, ShapeKind B>
+struct ShapePair;
+
+#define GPUSOLVE_SHAPE_PAIR(A, B, call)                                                                   \
+  template <>                                                                                            \
+  struct ShapePair<A, B> {                                                                               \
+    template <class T>                                                                                   \
+    GPUSOLVE_HD static Manifold<T> collide(const PlacedShape<T>& a, const PlacedShape<T>& b, T margin) { \
+      return call;                                                                                       \
+    }                                                                                                    \
+  };
+GPUSOLVE_SHAPE_PAIR(sphere, sphere, sphere_sphere(a, b, margin))
+GPUSOLVE_SHAPE_PAIR(sphere, box, sphere_box(a, b, margin))
+GPUSOLVE_SHAPE_PAIR(sphere, plane, sphere_plane(a, b, margin))
+GPUSOLVE_SHAPE_PAIR(sphere, capsule, sphere_capsule(a, b, margin))
+GPUSOLVE_SHAPE_PAIR(box, box, box_box(a, b, margin))
+GPUSOLVE_SHAPE_PAIR(box, plane, box_plane(a, b, margin))
+GPUSOLVE_SHAPE_PAIR(box, capsule, capsule_box(b, a, margin).flipped())
+GPUSOLVE_SHAPE_PAIR(plane, plane, ((void)a, (void)b, (void)margin, Manifold<T>{}))  // planes are fixed: they never meet
+GPUSOLVE_SHAPE_PAIR(plane, capsule, capsule_plane(b, a, margin).flipped())
+GPUSOLVE_SHAPE_PAIR(capsule, capsule, capsule_capsule(a, b, margin))
+#undef GPUSOLVE_SHAPE_PAIR
 
 namespace detail {
-// Contact point p = q + n gap / 2, q the closest point on b's surface.
-template <class T>
-GPUSOLVE_HD ContactGeometry<T> contact_at(const math::Vector3<T>& q, const math::Vector3<T>& n, T gap,
-                                          const math::Vector3<T>& pa, const math::Vector3<T>& pb) {
-  const math::Vector3<T> p = q + (gap / 2) * n;
-  return {n, p - pa, p - pb, gap};
+
+// Body a of kind A against body b of the runtime kind kb, over the kinds of
+// the mask M only (the others are never compiled in).
+template <ShapeMask M, ShapeKind A, class T>
+GPUSOLVE_HD Manifold<T> collide_with(const PlacedShape<T>& a, std::uint8_t kb, const PlacedShape<T>& b, T margin) {
+  const auto pair = [&](auto kind) -> Manifold<T> {
+    constexpr ShapeKind B = decltype(kind)::value;
+    if constexpr ((M & shape_bit(B)) == 0)
+      return {};
+    else if constexpr (A <= B)
+      return ShapePair<A, B>::collide(a, b, margin);
+    else
+      return ShapePair<B, A>::collide(b, a, margin).flipped();
+  };
+  switch (kb) {
+    case sphere: return pair(std::integral_constant<ShapeKind, sphere>{});
+    case box: return pair(std::integral_constant<ShapeKind, box>{});
+    case plane: return pair(std::integral_constant<ShapeKind, plane>{});
+    case capsule: return pair(std::integral_constant<ShapeKind, capsule>{});
+    default: return {};
+  }
 }
+
 }  // namespace detail
 
-// Spheres of radii Ra at pa and Rb at pb. Coincident centres get the normal +z.
-template <class T>
-GPUSOLVE_HD ContactGeometry<T> sphere_sphere(const math::Vector3<T>& pa, T Ra, const math::Vector3<T>& pb,
-                                             T Rb) {
-  const math::Vector3<T> d = pa - pb;
-  const T dist = math::norm(d);
-  const math::Vector3<T> n = dist > T(0) ? math::Vector3<T>(d * (T(1) / dist)) : math::Vector3<T>(T(0), T(0), T(1));
-  return detail::contact_at<T>(pb + Rb * n, n, dist - Ra - Rb, pa, pb);
-}
-
-// A sphere against the plane n.x = d (solid below), whose reference point is pb.
-template <class T>
-GPUSOLVE_HD ContactGeometry<T> sphere_plane(const math::Vector3<T>& pa, T Ra, const math::Vector3<T>& n, T d,
-                                            const math::Vector3<T>& pb) {
-  const T height = math::dot(n, pa) - d;
-  return detail::contact_at<T>(pa - height * n, n, height - Ra, pa, pb);
-}
-
-// A sphere against a box with centre pb, rotation R (body -> world) and half
-// extents h. Outside the box the normal runs from the closest point of the box
-// (on a face, edge or corner) to the centre; a centre inside the box is pushed
-// out through the nearest face.
-template <class T>
-GPUSOLVE_HD ContactGeometry<T> sphere_box(const math::Vector3<T>& pa, T Ra, const math::Vector3<T>& pb,
-                                          const math::Matrix3x3<T>& R, const math::Vector3<T>& h) {
-  const math::Vector3<T> c = math::transpose(R) * (pa - pb);  // sphere centre in the box frame
-  math::Vector3<T> q;
-  for (int k = 0; k < 3; ++k) q[k] = c[k] < -h[k] ? -h[k] : (c[k] > h[k] ? h[k] : c[k]);
-  const math::Vector3<T> out = c - q;
-  const T dist = math::norm(out);
-  math::Vector3<T> n_local;
-  T depth;  // signed distance of the centre from the box surface
-  if (dist > T(0)) {
-    n_local = out * (T(1) / dist);
-    depth = dist;
-  } else {
-    int k = 0;
-    for (int j = 1; j < 3; ++j)
-      if (h[j] - std::fabs(c[j]) < h[k] - std::fabs(c[k])) k = j;
-    const T s = c[k] < T(0) ? T(-1) : T(1);
-    n_local[k] = s;
-    q[k] = s * h[k];
-    depth = -(h[k] - std::fabs(c[k]));
+// The manifold of body a (kind ka) against body b (kind kb), with the kinds a
+// scene holds in M; a kind outside M gives no points.
+template <ShapeMask M = all_shapes, class T>
+GPUSOLVE_HD Manifold<T> collide(std::uint8_t ka, const PlacedShape<T>& a, std::uint8_t kb, const PlacedShape<T>& b,
+                                T margin) {
+  const auto with = [&](auto kind) -> Manifold<T> {
+    constexpr ShapeKind A = decltype(kind)::value;
+    if constexpr ((M & shape_bit(A)) == 0)
+      return {};
+    else
+      return detail::collide_with<M, A>(a, kb, b, margin);
+  };
+  switch (ka) {
+    case sphere: return with(std::integral_constant<ShapeKind, sphere>{});
+    case box: return with(std::integral_constant<ShapeKind, box>{});
+    case plane: return with(std::integral_constant<ShapeKind, plane>{});
+    case capsule: return with(std::integral_constant<ShapeKind, capsule>{});
+    default: return {};
   }
-  const math::Vector3<T> n = R * n_local;
-  const math::Vector3<T> qw = pb + R * q;
-  return detail::contact_at<T>(qw, n, depth - Ra, pa, pb);
+}
+
+// Body i of a Bodies view as the narrow phase reads it: only boxes and
+// capsules need their rotation (a sphere's does not change its surface, a
+// plane's lies in its parameters), so only theirs is loaded.
+template <class T, class View>
+GPUSOLVE_HD PlacedShape<T> placed_shape(const View& b, std::size_t i) {
+  PlacedShape<T> s{math::Vector3<T>(b.pos(i, 0), b.pos(i, 1), b.pos(i, 2)), math::Matrix3x3<T>::identity(), {}};
+  const std::uint8_t kind = b.shape[i];
+  const std::size_t params = kind == plane ? 4 : kind == box ? 3 : kind == capsule ? 2 : 1;
+  for (std::size_t c = 0; c < params; ++c) s.p[c] = b.shape_param(i, c);
+  if (kind == box || kind == capsule)
+    for (std::size_t c = 0; c < 9; ++c) s.R[c] = b.R(i, c);
+  return s;
 }
 
 }  // namespace gpusolve::rbd

@@ -42,6 +42,7 @@ struct Contacts {
   using VecD2 = VectorD2<T, device_is<Device>>;
 
   D1<std::uint32_t> a, b;  // body indices
+  D1<std::uint32_t> feature;  // ManifoldPoint::feature: which point of the pair's manifold
   VecD2 n, t, o;           // n x 3: normal (b -> a) and the two tangents
   VecD2 ra, rb;            // n x 3: centre of mass -> contact point
   VecD1 phi0;              // gap at the start of the step
@@ -61,6 +62,7 @@ struct Contacts {
       if (cap < count) cap = count;
       a.resize(cap);
       b.resize(cap);
+      feature.resize(cap);
       phi0.resize(cap);
       for (VecD2* f : {&n, &ra, &rb}) f->resize(cap, 3);
       dinv.resize(cap, rows * rows);
@@ -100,7 +102,7 @@ struct Contacts {
   // to size().
   struct View {
     detail::Extent count;
-    D1View<std::uint32_t> a, b;
+    D1View<std::uint32_t> a, b, feature;
     VecD2View n, t, o, ra, rb;
     VecD1View phi0, mu;
     VecD2View dinv, x;
@@ -117,12 +119,14 @@ struct Contacts {
 
     // Writes contact i. V is any vector type with operator[](0..2). The
     // tangents are built from n, so friction rows are well defined for any
-    // normal; mu is ignored by models without friction.
+    // normal; mu is ignored by models without friction. point_feature tells
+    // the points of one body pair apart (warm starting matches it).
     template <class V>
     GPUSOLVE_HD void set(std::size_t i, std::uint32_t body_a, std::uint32_t body_b, const V& normal,
-                         const V& r_a, const V& r_b, T gap, T friction) const {
+                         const V& r_a, const V& r_b, T gap, T friction, std::uint32_t point_feature = 0) const {
       a[i] = body_a;
       b[i] = body_b;
+      feature[i] = point_feature;
       for (std::size_t c = 0; c < 3; ++c) {
         n(i, c) = normal[c];
         ra(i, c) = r_a[c];
@@ -164,6 +168,7 @@ struct Contacts {
     return View{{n_, live_},
                 logical(a.view(), n_),
                 logical(b.view(), n_),
+                logical(feature.view(), n_),
                 logical(n.view(), n_),
                 logical(t.view(), n_),
                 logical(o.view(), n_),

@@ -23,6 +23,12 @@ struct Frame {
     Vec3 center;
     Vec3 half;                     // half extents in the box frame
     std::array<double, 9> R;       // rotation, row-major: world = R * local
+    bool moving = false;           // drawn with the moving bodies, not the fixed geometry
+  };
+  struct Capsule {
+    Vec3 center;
+    Vec3 axis;                     // unit, world frame: the core segment is center +- half_length * axis
+    double radius, half_length;
   };
   struct Plane {
     Vec3 normal;                   // unit, points out of the solid half-space
@@ -34,6 +40,17 @@ struct Frame {
   Spheres spheres;
   std::vector<Box> boxes;
   std::vector<Plane> planes;
+  std::vector<Capsule> capsules;
+
+  // The ends of a capsule's core segment.
+  static std::array<Vec3, 2> ends(const Capsule& c) {
+    std::array<Vec3, 2> e{};
+    for (int r = 0; r < 3; ++r) {
+      e[0][r] = c.center[r] - c.half_length * c.axis[r];
+      e[1][r] = c.center[r] + c.half_length * c.axis[r];
+    }
+    return e;
+  }
 
   void add_sphere(const Vec3& p, double r, const Vec3& v = {0.0, 0.0, 0.0}) {
     spheres.pos.push_back(p);

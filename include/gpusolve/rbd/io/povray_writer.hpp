@@ -1,4 +1,4 @@
-// POV-Ray scene writer of a frame: spheres, boxes, planes, a camera and lights (thesis Fig. 16).
+// POV-Ray scene writer of a frame: spheres, boxes, capsules, planes, a camera and lights (thesis Fig. 16).
 #pragma once
 
 #include <algorithm>
@@ -45,6 +45,8 @@ inline void pov_camera(const Frame& f, PovOptions& o) {
   for (std::size_t i = 0; i < f.spheres.size(); ++i) grow(f.spheres.pos[i], f.spheres.radius[i]);
   for (const auto& b : f.boxes)
     for (const auto& c : box_corners(b)) grow(c, 0.0);
+  for (const auto& c : f.capsules)
+    for (const auto& e : Frame::ends(c)) grow(e, c.radius);
   if (lo[0] > hi[0]) lo = {-1, -1, -1}, hi = {1, 1, 1};  // nothing finite to frame
   double r2 = 0;
   for (int k = 0; k < 3; ++k) {
@@ -61,7 +63,8 @@ inline void pov_camera(const Frame& f, PovOptions& o) {
 
 }  // namespace detail
 
-// Writes a self-contained .pov file. Spheres cycle through six colours by index;
+// Writes a self-contained .pov file. Spheres, moving boxes and capsules cycle
+// through six colours by index, fixed boxes are walls;
 // a plane is drawn only when the camera is on its open side (a closed box would
 // otherwise hide everything inside).
 inline void write_povray(const std::string& path, const Frame& f, PovOptions o = {}) {
@@ -89,17 +92,24 @@ inline void write_povray(const std::string& path, const Frame& f, PovOptions o =
   const auto& s = f.spheres;
   for (std::size_t i = 0; i < s.size(); ++i)
     out << "sphere { " << pov_vec(s.pos[i]) << ", " << s.radius[i] << " texture { S" << i % 6 << " } }\n";
-  for (const auto& b : f.boxes) {
+  for (std::size_t i = 0; i < f.boxes.size(); ++i) {
     // POV-Ray applies `matrix` to row vectors: its rows are the columns of S*R
     // (S swaps y and z), then the translation.
+    const auto& b = f.boxes[i];
     const auto& R = b.R;
     char buf[512];
     std::snprintf(buf, sizeof buf,
                   "box { <%.6g, %.6g, %.6g>, <%.6g, %.6g, %.6g> matrix <%.6g, %.6g, %.6g, %.6g, %.6g, "
-                  "%.6g, %.6g, %.6g, %.6g, %.6g, %.6g, %.6g> texture { Wall } }\n",
+                  "%.6g, %.6g, %.6g, %.6g, %.6g, %.6g, %.6g> texture { ",
                   -b.half[0], -b.half[1], -b.half[2], b.half[0], b.half[1], b.half[2], R[0], R[6], R[3],
                   R[1], R[7], R[4], R[2], R[8], R[5], b.center[0], b.center[2], b.center[1]);
-    out << buf;
+    out << buf << (b.moving ? "S" + std::to_string(i % 6) : std::string("Wall")) << " } }\n";
+  }
+  for (std::size_t i = 0; i < f.capsules.size(); ++i) {  // a sphere swept along the core segment
+    const auto& c = f.capsules[i];
+    const auto e = Frame::ends(c);
+    out << "sphere_sweep { linear_spline 2, " << pov_vec(e[0]) << ", " << c.radius << ", " << pov_vec(e[1]) << ", "
+        << c.radius << " texture { S" << (i + 3) % 6 << " } }\n";
   }
   for (const auto& p : f.planes) {
     const auto& n = p.normal;

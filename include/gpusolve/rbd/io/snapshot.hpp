@@ -25,10 +25,15 @@ Frame snapshot(const BodySet<T>& bodies, std::size_t step, double time) {
         break;
       case box: {
         const auto R = math::to_rotation_matrix(math::Quaternion<T>(b.q[0], b.q[1], b.q[2], b.q[3]));
-        Frame::Box x{p, {double(s[0]), double(s[1]), double(s[2])}, {}};
+        Frame::Box x{p, {double(s[0]), double(s[1]), double(s[2])}, {}, b.status == active};
         for (int r = 0; r < 3; ++r)
           for (int c = 0; c < 3; ++c) x.R[3 * r + c] = R(r, c);
         f.boxes.push_back(x);
+        break;
+      }
+      case capsule: {
+        const auto R = math::to_rotation_matrix(math::Quaternion<T>(b.q[0], b.q[1], b.q[2], b.q[3]));
+        f.capsules.push_back({p, {double(R(0, 0)), double(R(1, 0)), double(R(2, 0))}, double(s[0]), double(s[1])});
         break;
       }
       case plane:

@@ -1,10 +1,12 @@
-// VTK legacy writers of a frame for ParaView: spheres as points with data, fixed geometry as cells.
+// VTK legacy writers of a frame for ParaView: spheres as points with data,
+// moving boxes and capsules as cells, fixed geometry as cells.
 #pragma once
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "gpusolve/core/error.hpp"
 #include "gpusolve/rbd/io/frame.hpp"
@@ -53,16 +55,53 @@ inline void write_vtk_spheres(const std::string& path, const Frame& f) {
   for (const auto& v : s.vel) out << std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) << '\n';
 }
 
-// Boxes as hexahedra and planes as squares of side 2 * plane_half_extent centred
+// The moving boxes as hexahedra and the capsules as line cells (their core
+// segments) in one UNSTRUCTURED_GRID, with cell data `kind` (0 box, 1 capsule)
+// and `radius` (capsules; 0 for boxes). In ParaView: Extract Cells By Type for
+// the lines, then Tube, radius from `radius` (Vary Radius: By Absolute Scalar).
+inline void write_vtk_shapes(const std::string& path, const Frame& f) {
+  std::vector<const Frame::Box*> boxes;
+  for (const auto& b : f.boxes)
+    if (b.moving) boxes.push_back(&b);
+  const std::size_t nb = boxes.size(), nc = f.capsules.size();
+  auto out = detail::open_vtk(path, "gpusolve moving shapes", "UNSTRUCTURED_GRID");
+  detail::vtk_time(out, f);
+  out << "POINTS " << 8 * nb + 2 * nc << " float\n";
+  for (const Frame::Box* b : boxes)
+    for (const auto& c : box_corners(*b)) detail::vtk_vec(out, c);
+  for (const auto& c : f.capsules)
+    for (const auto& e : Frame::ends(c)) detail::vtk_vec(out, e);
+  out << "CELLS " << nb + nc << ' ' << 9 * nb + 3 * nc << '\n';
+  for (std::size_t b = 0; b < nb; ++b) {
+    out << 8;
+    for (std::size_t k = 0; k < 8; ++k) out << ' ' << 8 * b + k;
+    out << '\n';
+  }
+  for (std::size_t c = 0; c < nc; ++c) out << "2 " << 8 * nb + 2 * c << ' ' << 8 * nb + 2 * c + 1 << '\n';
+  out << "CELL_TYPES " << nb + nc << '\n';  // 12: VTK_HEXAHEDRON, 3: VTK_LINE
+  for (std::size_t b = 0; b < nb; ++b) out << "12\n";
+  for (std::size_t c = 0; c < nc; ++c) out << "3\n";
+  out << "CELL_DATA " << nb + nc << "\nSCALARS kind int 1\nLOOKUP_TABLE default\n";
+  for (std::size_t b = 0; b < nb; ++b) out << "0\n";
+  for (std::size_t c = 0; c < nc; ++c) out << "1\n";
+  out << "SCALARS radius float 1\nLOOKUP_TABLE default\n";
+  for (std::size_t b = 0; b < nb; ++b) out << "0\n";
+  for (const auto& c : f.capsules) out << c.radius << '\n';
+}
+
+// The fixed boxes as hexahedra and planes as squares of side 2 * plane_half_extent centred
 // at the plane point closest to the origin, in one UNSTRUCTURED_GRID; cell data
 // `kind` is 0 for a box, 1 for a plane.
 inline void write_vtk_fixed(const std::string& path, const Frame& f, double plane_half_extent) {
-  const std::size_t nb = f.boxes.size(), np = f.planes.size();
+  std::vector<const Frame::Box*> boxes;
+  for (const auto& b : f.boxes)
+    if (!b.moving) boxes.push_back(&b);
+  const std::size_t nb = boxes.size(), np = f.planes.size();
   auto out = detail::open_vtk(path, "gpusolve fixed geometry", "UNSTRUCTURED_GRID");
   detail::vtk_time(out, f);
   out << "POINTS " << 8 * nb + 4 * np << " float\n";
-  for (const auto& b : f.boxes)
-    for (const auto& c : box_corners(b)) detail::vtk_vec(out, c);
+  for (const Frame::Box* b : boxes)
+    for (const auto& c : box_corners(*b)) detail::vtk_vec(out, c);
   for (const auto& p : f.planes) {
     // Two unit tangents u, w spanning the plane.
     const auto& n = p.normal;

@@ -21,10 +21,9 @@ namespace gpusolve::rbd {
 
 namespace detail {
 
-// A contact's gap after its bodies' centres moved for h at their velocities:
-// phi += h n . (v_a - v_b). Exact to first order for the shapes body a can be
-// (a sphere) against spheres, planes and fixed boxes: turning a sphere does not
-// move its surface along n, so the angular velocity does not enter.
+// A contact's gap after its bodies moved for h at their velocities:
+// phi += h n . (v_a + w_a x r_a - v_b - w_b x r_b), the relative velocity of
+// the contact point, exact to first order for every shape.
 template <class BV, class CV, class T>
 struct AdvanceGap {
   BV b;
@@ -32,8 +31,9 @@ struct AdvanceGap {
   T h;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     const std::uint32_t ia = c.a[i], ib = c.b[i];
-    const math::Vector3<T> dv = math::load3<T>(b.v, ia) - math::load3<T>(b.v, ib);
-    c.phi0[i] += h * math::dot(math::load3<T>(c.n, i), dv);
+    const math::Vector3<T> va = math::load3<T>(b.v, ia) + math::load3<T>(b.w, ia) % math::load3<T>(c.ra, i);
+    const math::Vector3<T> vb = math::load3<T>(b.v, ib) + math::load3<T>(b.w, ib) % math::load3<T>(c.rb, i);
+    c.phi0[i] += h * math::dot(math::load3<T>(c.n, i), math::Vector3<T>(va - vb));
   }
 };
 

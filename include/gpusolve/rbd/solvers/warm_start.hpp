@@ -33,6 +33,7 @@ template <class Model, class CV, class T>
 struct RememberImpulse {
   CV c;
   std::uint64_t* keys;
+  std::uint32_t* features;
   VectorD2View<T> p;  // contacts x Model::rows
   std::uint32_t* count;
   GPUSOLVE_HD void operator()(std::size_t i) const {
@@ -40,6 +41,7 @@ struct RememberImpulse {
     if (i == 0) *count = std::uint32_t(n);
     if (i >= n) return;
     keys[i] = pair_key(c.a[i], c.b[i]);
+    features[i] = c.feature[i];
     if constexpr (Model::rows == 3) {
       T x[3] = {c.x(i, 0), c.x(i, 1), c.x(i, 2)};
       const math::Vector3<T> w = Frame<T, Model, CV>(c, i).world(x);
@@ -70,15 +72,17 @@ GPUSOLVE_HD inline std::size_t lower_bound_near(const std::uint64_t* keys, std::
   return std::size_t(thrust::lower_bound(thrust::seq, keys + lo, keys + hi, key) - keys);
 }
 
-// x of contact i: factor times the remembered impulse of its body pair in the
-// contact's new frame, projected onto the admissible set (the normal may have
-// turned); zero for a pair that was not in contact. Both steps' contacts are
-// sorted by (a, b) and most pairs persist, so the pair is searched for from
-// the contact's index scaled to the previous list's length.
+// x of contact i: factor times the remembered impulse of the same point (body
+// pair and feature id) in the contact's new frame, projected onto the
+// admissible set (the normal may have turned); zero for a point that was not
+// in contact. Both steps' contacts are sorted by (a, b) and most pairs
+// persist, so the pair is searched for from the contact's index scaled to the
+// previous list's length, then its few points for the feature.
 template <class Model, class CV, class T>
 struct CarryImpulse {
   CV c;
   const std::uint64_t* keys;  // previous step's pair keys, sorted
+  const std::uint32_t* features;
   Extent previous;            // their number
   VectorD2View<T> p;
   T factor;
@@ -87,7 +91,9 @@ struct CarryImpulse {
     if (i >= c.size()) return;
     const std::size_t count = previous.size();
     const std::uint64_t key = pair_key(c.a[i], c.b[i]);
-    const std::size_t j = lower_bound_near(keys, count, key, std::size_t(std::uint64_t(i) * count / c.size()));
+    std::size_t j = lower_bound_near(keys, count, key, std::size_t(std::uint64_t(i) * count / c.size()));
+    const std::uint32_t feature = c.feature[i];
+    while (j < count && keys[j] == key && features[j] != feature) ++j;
     T x[R] = {};
     if (j < count && keys[j] == key) {
       if constexpr (R == 3) {
@@ -123,7 +129,7 @@ class WarmStart {
   // carry() as a functor over the contacts' bound, for a caller that launches it.
   template <class CV>
   detail::CarryImpulse<Model, CV, T> carrier(const CV& c, T factor) {
-    return {c, keys_.data(), {count_, count_ != 0 ? live_.data() : nullptr}, p_.view(), factor};
+    return {c, keys_.data(), features_.data(), {count_, count_ != 0 ? live_.data() : nullptr}, p_.view(), factor};
   }
   template <class CV>
   void remember(const CV& c, stream_t stream = stream_t{}) {
@@ -137,10 +143,11 @@ class WarmStart {
     count_ = on ? c.bound() : 0;
     if (count_ != 0) {
       gpusolve::detail::ensure_size(keys_, count_);
+      gpusolve::detail::ensure_size(features_, count_);
       gpusolve::detail::ensure_size(p_, count_, Model::rows);
       gpusolve::detail::ensure_size(live_, 1);
     }
-    return {c, keys_.data(), p_.view(), live_.data()};
+    return {c, keys_.data(), features_.data(), p_.view(), live_.data()};
   }
   // No impulses to carry (warm starting off): the next carry() starts all from zero.
   void forget() { count_ = 0; }
@@ -149,6 +156,7 @@ class WarmStart {
 
  private:
   VectorD1<std::uint64_t, device_is<Device>> keys_;
+  VectorD1<std::uint32_t, device_is<Device>> features_;
   VectorD2<T, device_is<Device>> p_;
   VectorD1<std::uint32_t, device_is<Device>> live_;  // the remembered contacts' count
   std::size_t count_ = 0;

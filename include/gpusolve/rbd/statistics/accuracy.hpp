@@ -1,5 +1,5 @@
 // The accuracy figures every step reports, defined once: the largest
-// interpenetration relative to the radius, kinetic and potential energy.
+// interpenetration relative to the feature size, kinetic and potential energy.
 #pragma once
 
 #include <cstddef>
@@ -7,12 +7,13 @@
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
+#include "gpusolve/rbd/bodies/derived_fields.hpp"
 #include "gpusolve/rbd/execution/device_algorithms.hpp"
 
 namespace gpusolve::rbd {
 
 // A step's accuracy figures: the largest penetration relative to the smaller
-// radius of the pair, kinetic and potential energy of the moving bodies; and
+// feature size of the pair (feature_size: a radius, a box's smallest half extent), kinetic and potential energy of the moving bodies; and
 // the number of contacts, which a step queued without a host wait knows only here.
 template <class T>
 struct StepFigures {
@@ -22,8 +23,7 @@ struct StepFigures {
 
 namespace detail {
 
-// max(0, -gap) / min(radius a, radius b): planes have an infinite radius, so a
-// sphere on a plane is measured against the sphere.
+// max(0, -gap) / min(feature_size a, feature_size b).
 template <class BV, class CV, class T>
 struct RelativePenetration {
   BV b;
@@ -31,7 +31,7 @@ struct RelativePenetration {
   GPUSOLVE_HD T operator()(std::size_t i) const {
     const T depth = -c.phi0[i];
     if (!(depth > T(0))) return T(0);
-    const T ra = b.radius[c.a[i]], rb = b.radius[c.b[i]];
+    const T ra = feature_size(b, c.a[i]), rb = feature_size(b, c.b[i]);
     return depth / (ra < rb ? ra : rb);
   }
 };

@@ -51,7 +51,7 @@ struct SolverStats {
 template <class T>
 struct StepStats {
   SolverStats<T> solver;
-  T max_penetration = 0;  // largest max(0, -gap) / (smaller radius of the pair) over contacts
+  T max_penetration = 0;  // largest max(0, -gap) / (smaller feature_size of the pair) over contacts
   T kinetic_energy = 0;
   T potential_energy = 0;  // -sum m g.x, zero at the origin
   double time_detection = 0, time_solve = 0;

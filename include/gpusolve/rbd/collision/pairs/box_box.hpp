@@ -1,0 +1,177 @@
+// Box against box: the separating axis test, then a clipped face or an edge pair.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/math.hpp"
+#include "gpusolve/rbd/collision/manifold.hpp"
+#include "gpusolve/rbd/collision/pairs/reduce_points.hpp"
+#include "gpusolve/rbd/collision/placed_shape.hpp"
+
+namespace gpusolve::rbd {
+
+// Feature ids of box_box:
+//   face contact: bits 0-2 and 3-5 the two polygon edges meeting at the point, in
+//     the incident face's winding (0-3: incident face edge k, from corner k to
+//     k+1; 4-7: reference side 4 + s); two incident edges make an incident
+//     vertex, two sides a reference corner, one of each a crossing. Bits 6-8 the
+//     incident face, 9-11 the reference face (2 axis + 1 on the + side), bit 12
+//     set when the reference face is b's, bit 13 clear.
+//   edge contact: bit 13 set, bits 0-3 a's edge, 4-7 b's edge, each 4 axis +
+//     2 (+ side of axis+1) + (+ side of axis+2).
+namespace detail {
+
+// A vertex of the clipped polygon and the tags of its incoming and outgoing edges.
+template <class T>
+struct ClipPoint {
+  math::Vector3<T> p;
+  std::uint32_t in, out;
+};
+
+// The half extent of box b along the world direction L (not necessarily unit).
+template <class T>
+GPUSOLVE_HD T box_radius(const PlacedShape<T>& b, const math::Vector3<T>& L) {
+  T r = 0;
+  for (int k = 0; k < 3; ++k) r += b.p[k] * std::fabs(math::dot(b.axis(k), L));
+  return r;
+}
+
+// Face contact: the face of r on its axis i facing o is the reference; o's face
+// most anti-parallel to it is clipped to the reference's sides (Sutherland-Hodgman).
+template <class T>
+GPUSOLVE_HD Manifold<T> box_face_contact(const PlacedShape<T>& r, const PlacedShape<T>& o, int i, bool ref_b,
+                                         T margin) {
+  const math::Vector3<T> ri = r.axis(i);
+  const bool rpos = math::dot(math::Vector3<T>(o.x - r.x), ri) >= T(0);
+  const math::Vector3<T> nr = rpos ? ri : math::Vector3<T>(-ri);  // reference normal, r towards o
+  int j = 0;
+  T dj = math::dot(o.axis(0), nr);
+  for (int k = 1; k < 3; ++k) {
+    const T dk = math::dot(o.axis(k), nr);
+    if (std::fabs(dk) > std::fabs(dj)) j = k, dj = dk;
+  }
+  const bool ipos = dj < T(0);  // the incident face's outward normal opposes nr
+  const int u = (j + 1) % 3, v = (j + 2) % 3;
+  const math::Vector3<T> fc = o.x + (ipos ? o.p[j] : -o.p[j]) * o.axis(j);
+  const math::Vector3<T> eu = o.p[u] * o.axis(u), ev = o.p[v] * o.axis(v);
+  ClipPoint<T> poly[8], next[8];
+  int n = 4;
+  for (std::uint32_t k = 0; k < 4; ++k) {  // corners (+,+), (-,+), (-,-), (+,-) in (u, v)
+    const T su = (k == 0 || k == 3) ? T(1) : T(-1), sv = k < 2 ? T(1) : T(-1);
+    poly[k] = {math::Vector3<T>(fc + su * eu + sv * ev), (k + 3) % 4, k};
+  }
+  for (std::uint32_t s = 0; s < 4 && n > 0; ++s) {  // sides (+w, -w) for w = i+1, then i+2
+    const int w = (i + 1 + int(s / 2)) % 3;
+    const math::Vector3<T> sn = s % 2 ? math::Vector3<T>(-r.axis(w)) : r.axis(w);
+    const T off = math::dot(sn, r.x) + r.p[w];
+    int m = 0;
+    for (int k = 0; k < n; ++k) {
+      const ClipPoint<T>& P = poly[k];
+      const ClipPoint<T>& Q = poly[(k + 1) % n];
+      const T dp = math::dot(sn, P.p) - off, dq = math::dot(sn, Q.p) - off;
+      if (dp <= T(0) && m < 8) next[m++] = P;
+      if (((dp < T(0) && dq > T(0)) || (dp > T(0) && dq < T(0))) && m < 8) {
+        const math::Vector3<T> x = P.p + (dp / (dp - dq)) * (Q.p - P.p);
+        next[m++] = dp < T(0) ? ClipPoint<T>{x, P.out, 4 + s} : ClipPoint<T>{x, 4 + s, P.out};
+      }
+    }
+    n = m;
+    for (int k = 0; k < n; ++k) poly[k] = next[k];
+  }
+  const std::uint32_t base = (std::uint32_t(ref_b) << 12) | (std::uint32_t(2 * i + rpos) << 9) |
+                             (std::uint32_t(2 * j + ipos) << 6);
+  const T ref_off = math::dot(nr, r.x) + r.p[i];
+  ManifoldPoint<T> c[8];
+  int count = 0;
+  for (int k = 0; k < n; ++k) {
+    const T gap = math::dot(nr, poly[k].p) - ref_off;
+    if (gap < margin)
+      c[count++] = {math::Vector3<T>(poly[k].p - (gap / 2) * nr), gap, base | poly[k].in | (poly[k].out << 3)};
+  }
+  return reduce_to_four(c, count, ref_b ? nr : math::Vector3<T>(-nr));
+}
+
+// The edge of box b along axis e nearest the direction L (its + side where
+// dot(axis, L) > 0): its centre in the world, and its id (4 e + 2 s1 + s2).
+template <class T>
+GPUSOLVE_HD math::Vector3<T> box_support_edge(const PlacedShape<T>& b, int e, const math::Vector3<T>& L,
+                                              std::uint32_t& id) {
+  math::Vector3<T> l;
+  id = 4u * std::uint32_t(e);
+  for (int t = 1; t <= 2; ++t) {
+    const int k = (e + t) % 3;
+    const bool pos = math::dot(b.axis(k), L) > T(0);
+    l[k] = pos ? b.p[k] : -b.p[k];
+    id |= std::uint32_t(pos) << (2 - t);
+  }
+  return b.to_world(l);
+}
+
+// Edge contact on the axis a.axis(i) x b.axis(j): one point midway between the
+// closest points of a's and b's edges along those axes nearest each other.
+// False when those points fall off the edges (by more than slop): no edge crossing.
+template <class T>
+GPUSOLVE_HD bool box_edge_contact(const PlacedShape<T>& a, const PlacedShape<T>& b, int i, int j, T margin,
+                                  T slop, Manifold<T>& out) {
+  const math::Vector3<T> da = a.axis(i), db = b.axis(j);
+  math::Vector3<T> n = da % db;
+  n = math::Vector3<T>((T(1) / math::norm(n)) * n);
+  if (math::dot(math::Vector3<T>(a.x - b.x), n) < T(0)) n = math::Vector3<T>(-n);
+  std::uint32_t ea, eb;
+  const math::Vector3<T> pa = box_support_edge(a, i, math::Vector3<T>(-n), ea);
+  const math::Vector3<T> pb = box_support_edge(b, j, n, eb);
+  // Closest points of the lines pa + s da and pb + t db, clamped to the edges.
+  const math::Vector3<T> w = pa - pb;
+  const T c = math::dot(da, db), d = math::dot(da, w), e = math::dot(db, w);
+  const T denom = T(1) - c * c;
+  T s = (c * e - d) / denom, t = (e - c * d) / denom;
+  if (std::fabs(s) > a.p[i] + slop || std::fabs(t) > b.p[j] + slop) return false;
+  s = std::fmax(-a.p[i], std::fmin(a.p[i], s));
+  t = std::fmax(-b.p[j], std::fmin(b.p[j], t));
+  const math::Vector3<T> ca = pa + s * da, cb = pb + t * db;
+  const T gap = math::dot(math::Vector3<T>(ca - cb), n);
+  out = within_margin(one_point<T>(cb, n, gap, (1u << 13) | ea | (eb << 4)), margin);
+  return true;
+}
+
+}  // namespace detail
+
+// Box a against box b (half extents p[0..2]): the axis of least overlap among
+// the 6 face normals and 9 edge crossings, no points when one separates by the
+// margin or more. Face axes win over edge axes unless those are clearly better
+// (5%), and a's faces over b's (2%), so near ties pick the same contact every
+// step; an edge axis whose edges do not cross falls back to the best face.
+template <class T>
+GPUSOLVE_HD Manifold<T> box_box(const PlacedShape<T>& a, const PlacedShape<T>& b, T margin) {
+  const math::Vector3<T> d = a.x - b.x;
+  T hmin = a.p[0];
+  for (int k = 0; k < 3; ++k) hmin = std::fmin(hmin, std::fmin(a.p[k], b.p[k]));
+  const T slop = T(0.01) * hmin;                           // absolute part of the preference
+  const T parallel = sizeof(T) == 4 ? T(1e-3) : T(1e-6);  // |cross| below: edges parallel, skip
+  int best[3] = {-1, -1, -1};  // the least separating axis among a's faces, b's faces, the edges
+  T best_s[3] = {0, 0, 0};
+  for (int k = 0; k < 15; ++k) {
+    math::Vector3<T> L = k < 3 ? a.axis(k) : b.axis(k % 3);
+    if (k >= 6) L = a.axis((k - 6) / 3) % b.axis((k - 6) % 3);
+    const T len = math::norm(L);
+    if (k >= 6 && len < parallel) continue;
+    const T s = (std::fabs(math::dot(d, L)) - detail::box_radius(a, L) - detail::box_radius(b, L)) / len;
+    if (s >= margin) return {};
+    const int g = k < 3 ? 0 : (k < 6 ? 1 : 2);
+    if (best[g] < 0 || s > best_s[g]) best[g] = k, best_s[g] = s;
+  }
+  const auto clearly = [&](int g, int than, T rel) {
+    return best[g] >= 0 && best_s[g] > best_s[than] + rel * (std::fabs(best_s[than]) + slop);
+  };
+  const int face = clearly(1, 0, T(0.02)) ? 1 : 0;
+  Manifold<T> m;
+  if (clearly(2, face, T(0.05)) &&
+      detail::box_edge_contact(a, b, (best[2] - 6) / 3, (best[2] - 6) % 3, margin, slop, m))
+    return m;
+  return face == 0 ? detail::box_face_contact(a, b, best[0], false, margin)
+                   : detail::box_face_contact(b, a, best[1] - 3, true, margin);
+}
+
+}  // namespace gpusolve::rbd

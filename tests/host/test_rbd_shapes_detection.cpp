@@ -1,0 +1,136 @@
+// Collision detection with every shape: the shape-pair table against its
+// reversed pairs, and the contacts of a mixed heap against a brute-force
+// search over all pairs through the table.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <tuple>
+#include <vector>
+
+#include "catch_compat.hpp"
+#include "test_rbd_scenes.hpp"
+
+using namespace rbd_test;
+
+namespace {
+
+using SV = math::Vector3<float>;
+using M3 = math::Matrix3x3<float>;
+
+// A random primitive of kind k near the origin, turned at random.
+PlacedShape<float> random_shape(ShapeKind k, std::mt19937& gen) {
+  std::uniform_real_distribution<float> u(-1.f, 1.f), size(0.2f, 0.8f);
+  PlacedShape<float> s{SV(u(gen), u(gen), u(gen)), M3::identity(), {size(gen), size(gen), size(gen), 0.f}};
+  float q[4], len = 0;
+  for (float& x : q) x = u(gen), len += x * x;
+  len = std::sqrt(len);
+  s.R = math::to_rotation_matrix(math::Quaternion<float>(q[0] / len, q[1] / len, q[2] / len, q[3] / len));
+  if (k == plane) {
+    const SV n(u(gen), u(gen), 1.f);
+    const float l = math::norm(n);
+    s = PlacedShape<float>{SV(), M3::identity(), {n[0] / l, n[1] / l, n[2] / l, u(gen) * 0.5f}};
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("every shape pair of the table equals its reversed pair with the normal turned", "[collision][shapes]") {
+  std::mt19937 gen(11);
+  const ShapeKind kinds[] = {sphere, box, plane, capsule};
+  std::size_t touching = 0;
+  for (ShapeKind ka : kinds)
+    for (ShapeKind kb : kinds) {
+      if (ka == plane && kb == plane) continue;
+      for (int trial = 0; trial < 300; ++trial) {
+        const PlacedShape<float> a = random_shape(ka, gen), b = random_shape(kb, gen);
+        const Manifold<float> ab = collide(ka, a, kb, b, 0.05f), ba = collide(kb, b, ka, a, 0.05f);
+        INFO("kinds " << int(ka) << ", " << int(kb) << ", trial " << trial);
+        REQUIRE((ab.count > 0) == (ba.count > 0));
+        if (ab.count == 0) continue;
+        ++touching;
+        if (ka == kb) {
+          // The same function with the bodies swapped: it may pick the other
+          // body's face as the reference, so only the deepest gap must agree.
+          auto deepest = [](const Manifold<float>& m) {
+            float d = m.points[0].gap;
+            for (int p = 1; p < m.count; ++p) d = std::min(d, m.points[p].gap);
+            return d;
+          };
+          CHECK(deepest(ab) == Approx(deepest(ba)).epsilon(0.05).margin(2e-3));
+          continue;
+        }
+        REQUIRE(ab.count == ba.count);
+        CHECK(math::norm(ab.n) == Approx(1.f).margin(1e-5));
+        for (int c = 0; c < 3; ++c) CHECK(ab.n[c] == Approx(-ba.n[c]).margin(1e-5));
+        for (int p = 0; p < ab.count; ++p) {
+          CHECK(ab.points[p].gap == Approx(ba.points[p].gap).margin(1e-5));
+          CHECK(ab.points[p].feature == ba.points[p].feature);
+          for (int c = 0; c < 3; ++c) CHECK(ab.points[p].p[c] == Approx(ba.points[p].p[c]).margin(1e-5));
+        }
+      }
+    }
+  CHECK(touching > 1000);  // most random pairs near the origin overlap
+}
+
+TEST_CASE("contacts of a mixed heap equal a brute-force search through the shape-pair table",
+          "[collision][shapes]") {
+  BodySet<float> s = mixed_heap<float>(5, 3);
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<float> shake(-0.12f, 0.12f);
+  for (std::size_t i = 1; i < s.size(); ++i)
+    for (int c = 0; c < 3; ++c) s[i].pos[c] += shake(gen);  // pairs at every distance around the margin
+  s.add_box({2.f, 2.f, 4.f}, {5.f, 0.5f, 0.5f}, 3.f);                    // a long moving box: the grid's cells follow it
+  s.add_fixed_box({2.f, -9.f, 1.f}, {6.f, 6.f, 1.f});                    // fixed and larger: an obstacle
+  s.add_fixed_capsule({1.f, 2.f, 0.3f}, 0.3f, 0.5f);                      // fixed, small: on the grid
+  s[7].status = removed;
+  const float margin = 0.05f;
+  BodyManager<device::cpu> m(s);
+  m.syncDevice();
+  auto& b = m.device();
+  CollisionDetection<device::cpu> cd;
+  Contacts<device::cpu, float, Frictionless> c;
+  const std::size_t n = cd.detect(b, c, margin);
+
+  // The grid's cell: the largest reach of a moving body; a fixed body beyond it
+  // is an obstacle, whose contacts name the moving body first.
+  const auto v = b.view();
+  float cell = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s[i].status == active) cell = std::max(cell, 2 * v.radius[i] + margin);
+  auto obstacle = [&](std::size_t i) { return s[i].shape == plane || 2 * v.radius[i] + margin > cell; };
+  std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> expected;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (std::size_t j = 0; j < s.size(); ++j) {
+      if (i == j || s[i].status == removed || s[j].status == removed) continue;
+      if (s[i].status != active && s[j].status != active) continue;
+      const bool grid_pair = !obstacle(i) && !obstacle(j);
+      if (grid_pair ? j < i : obstacle(i)) continue;  // each pair once, as detection orders it
+      const Manifold<float> mf = collide(v.shape[i], placed_shape<float>(v, i), v.shape[j], placed_shape<float>(v, j), margin);
+      for (int p = 0; p < mf.count; ++p) expected.emplace_back(std::uint32_t(i), std::uint32_t(j), mf.points[p].feature);
+    }
+  // Detection lists a pair's points in its manifold's order; compare as sets within a pair.
+  std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> found;
+  for (std::size_t k = 0; k < n; ++k) found.emplace_back(c.a(k), c.b(k), c.feature(k));
+  for (std::size_t k = 1; k < n; ++k) {
+    INFO("contact " << k);
+    REQUIRE(std::make_pair(c.a(k - 1), c.b(k - 1)) <= std::make_pair(c.a(k), c.b(k)));  // sorted by (a, b)
+    CHECK(c.phi0(k) < margin);
+  }
+  std::sort(expected.begin(), expected.end());
+  std::sort(found.begin(), found.end());
+  CHECK(found == expected);
+  // Every pair of kinds is among them (plane-plane aside).
+  std::array<std::array<std::size_t, 4>, 4> kinds{};
+  for (const auto& e : expected) {
+    const int ka = s[std::get<0>(e)].shape, kb = s[std::get<1>(e)].shape;
+    ++kinds[std::min(ka, kb)][std::max(ka, kb)];
+  }
+  for (int ka = 0; ka < 4; ++ka)
+    for (int kb = ka; kb < 4; ++kb) {
+      INFO("kinds " << ka << ", " << kb << ": " << kinds[ka][kb] << " contacts");
+      if (ka != plane || kb != plane) CHECK(kinds[ka][kb] > 0);
+    }
+}

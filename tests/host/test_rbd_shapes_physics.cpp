@@ -1,0 +1,135 @@
+// Boxes and capsules in a World on the CPU backend, against closed forms:
+// resting, sticking and sliding on an incline, tipping over an edge, rolling.
+#include <array>
+#include <cmath>
+
+#include "catch_compat.hpp"
+#include "test_rbd_scenes.hpp"
+
+using namespace rbd_test;
+
+namespace {
+
+using Q = std::array<double, 4>;
+
+// The unit quaternion of a turn by angle about the unit axis (x, y, z).
+Q turn(double angle, double x, double y, double z) {
+  const double s = std::sin(angle / 2);
+  return {std::cos(angle / 2), s * x, s * y, s * z};
+}
+
+// Settings for the closed-form checks: a small step and a tight solve, so the
+// figures measure the contact model, not the solver's remaining error.
+SolverSettings<double> exact_settings(double mu) {
+  SolverSettings<double> s;
+  s.dt = 0.002, s.margin = 0.02, s.friction = mu, s.tolerance = 1e-9, s.max_iterations = 400;
+  return s;
+}
+
+// A box of half extents h released resting on the plane tilted by theta about
+// y; its acceleration along the slope between 0.2 s and 0.6 s. The contact's
+// first tangent lies along the slope (as for the sphere on the incline), so
+// the friction pyramid bounds the force exactly.
+double box_incline_acceleration(double theta, double mu) {
+  BodySet<double> set;
+  const std::array<double, 3> n = {-std::sin(theta), 0, std::cos(theta)};
+  set.add_plane(n, 0);
+  const double hz = 0.25;
+  set.add_box({hz * n[0], 0, hz * n[2]}, {0.5, 0.4, hz}, 1.0, turn(-theta, 0, 1, 0));
+  World<device::cpu, double, PyramidFriction, Jacobi<Gather>> w(set, exact_settings(mu));
+  const std::array<double, 3> down = {-std::cos(theta), 0, -std::sin(theta)};
+  auto speed = [&] {
+    w.syncHost();
+    return set[1].v[0] * down[0] + set[1].v[2] * down[2];
+  };
+  for (int i = 0; i < 100; ++i) w.step();
+  const double v1 = speed();
+  for (int i = 0; i < 200; ++i) REQUIRE(w.step().solver.contacts == 4);
+  return (speed() - v1) / (200 * 0.002);
+}
+
+// A box of half extents (hx, 0.3, hz) standing on its -x bottom edge, turned
+// by phi about y; the cosine of its tilt after 3 s (1: upright, 0: on its side).
+double tilt_after_release(double hx, double hz, double phi) {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  // Turned by -phi about y, the corner (-hx, -hz) is lowest: the centre stands
+  // at height hx sin(phi) + hz cos(phi) above it.
+  const double c = std::cos(phi), s = std::sin(phi);
+  set.add_box({0, 0, hx * s + hz * c}, {hx, 0.3, hz}, 1.0, turn(-phi, 0, 1, 0));
+  SolverSettings<double> st = exact_settings(0.8);
+  st.tolerance = 1e-7;
+  World<device::cpu, double> w(set, st);
+  for (int i = 0; i < 1500; ++i) w.step();
+  return w.bodies().R(1, 8);  // R_zz: the body z axis against world z
+}
+
+}  // namespace
+
+TEST_CASE("a box resting on a plane has 4 contact points and stays put", "[rbd_physics][shapes]") {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  set.add_box({0.3, -0.2, 0.5}, {1.0, 0.7, 0.5}, 2.0, turn(0.4, 0, 0, 1));
+  World<device::cpu, double> w(set, SolverSettings<double>{});
+  double worst = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const auto st = w.step();
+    REQUIRE(st.solver.contacts == 4);
+    worst = std::fmax(worst, st.max_penetration);
+  }
+  w.syncHost();
+  CHECK(worst < 1e-3);  // of the smallest half extent
+  CHECK(std::fabs(set[1].pos[0] - 0.3) < 1e-4);
+  CHECK(std::fabs(set[1].pos[1] + 0.2) < 1e-4);
+  CHECK(std::fabs(set[1].pos[2] - 0.5) < 5e-4);
+  CHECK(std::fabs(set[1].q[3] - std::sin(0.2)) < 1e-4);  // still turned by 0.4 about z
+}
+
+TEST_CASE("a box on an incline sticks below tan(theta) = mu and slides at g (sin - mu cos) above",
+          "[rbd_physics][shapes]") {
+  const double theta = 25 * M_PI / 180;  // tan = 0.466
+  CHECK(std::fabs(box_incline_acceleration(theta, 0.6)) < 0.01 * g * std::sin(theta));
+  for (double mu : {0.0, 0.2, 0.35})
+    CHECK(box_incline_acceleration(theta, mu) == Approx(g * (std::sin(theta) - mu * std::cos(theta))).epsilon(0.01));
+}
+
+TEST_CASE("a box tips over its edge exactly when its centre of mass passes the edge", "[rbd_physics][shapes]") {
+  const double hx = 0.25, hz = 1.0;
+  const double critical = std::atan(hx / hz);  // the centre of mass above the edge
+  CHECK(tilt_after_release(hx, hz, critical - 0.03) > 0.999);  // falls back upright
+  CHECK(std::fabs(tilt_after_release(hx, hz, critical + 0.03)) < 0.05);  // lands on its side
+}
+
+TEST_CASE("a capsule rolls down an incline at g sin(theta) / (1 + I / (m r^2))", "[rbd_physics][shapes]") {
+  const double theta = 20 * M_PI / 180, r = 0.3, L = 0.6, m = 1.5;
+  BodySet<double> set;
+  const std::array<double, 3> n = {-std::sin(theta), 0, std::cos(theta)};
+  set.add_plane(n, 0);
+  set.add_capsule({r * n[0], 0, r * n[2]}, r, L, m, turn(M_PI / 2, 0, 0, 1));  // its axis along y
+  World<device::cpu, double, PyramidFriction, Jacobi<Gather>> w(set, exact_settings(0.8));
+  const std::array<double, 3> down = {-std::cos(theta), 0, -std::sin(theta)};
+  auto speed = [&] {
+    w.syncHost();
+    return set[1].v[0] * down[0] + set[1].v[2] * down[2];
+  };
+  for (int i = 0; i < 100; ++i) w.step();
+  const double v1 = speed();
+  for (int i = 0; i < 200; ++i) REQUIRE(w.step().solver.contacts == 2);
+  const double a = (speed() - v1) / (200 * 0.002);
+  const double axial = solid_capsule(r, L, m).inertia[0];
+  CHECK(a == Approx(g * std::sin(theta) / (1 + axial / (m * r * r))).epsilon(0.01));
+}
+
+TEST_CASE("a stack of boxes stands", "[rbd_physics][shapes]") {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  for (int k = 0; k < 5; ++k) set.add_box({0.02 * (k % 2), 0, 0.5 + 1.0 * k}, {0.5, 0.5, 0.5}, 1.0);
+  World<device::cpu, double> w(set, SolverSettings<double>{});
+  for (int i = 0; i < 2000; ++i) REQUIRE(w.step().solver.contacts == 20);
+  w.syncHost();
+  for (int k = 0; k < 5; ++k) {
+    INFO("box " << k);
+    CHECK(std::fabs(set[1 + k].pos[0] - 0.02 * (k % 2)) < 0.01);
+    CHECK(std::fabs(set[1 + k].pos[2] - (0.5 + 1.0 * k)) < 0.01);
+  }
+}
