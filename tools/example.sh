@@ -39,7 +39,7 @@ last=$(ls "$out"/frame_*.pov | tail -n 1)
 png=$(bash tools/render_povray.sh -w 640 -h 480 "$last")
 
 # Then every shape: boxes, capsules and spheres dropped onto a pyramid of
-# boxes (69 bodies, 2 000 steps; 10 to 30 s on the CPU backend).
+# boxes (69 bodies, 2 000 steps; about 5 s on the CPU backend of 2 cores).
 blocks=out/blocks
 start=$(date +%s)
 "build/example/examples/$target" blocks --out "$blocks" --frame-every 500 "$@" || status=$?
