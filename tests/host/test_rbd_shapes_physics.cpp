@@ -26,16 +26,12 @@ SolverSettings<double> exact_settings(double mu) {
   return s;
 }
 
-// A box of half extents h released resting on the plane tilted by theta about
-// y; its acceleration along the slope between 0.2 s and 0.6 s. The contact's
-// first tangent lies along the slope (as for the sphere on the incline), so
-// the friction pyramid bounds the force exactly.
-double box_incline_acceleration(double theta, double mu) {
-  BodySet<double> set;
-  const std::array<double, 3> n = {-std::sin(theta), 0, std::cos(theta)};
-  set.add_plane(n, 0);
-  const double hz = 0.25;
-  set.add_box({hz * n[0], 0, hz * n[2]}, {0.5, 0.4, hz}, 1.0, turn(-theta, 0, 1, 0));
+// The unit normal of the plane through the origin tilted by theta about y.
+std::array<double, 3> incline_normal(double theta) { return {-std::sin(theta), 0, std::cos(theta)}; }
+
+// Body 1 of `set` on the incline of incline_normal(theta): its acceleration
+// down the slope between 0.2 s and 0.6 s, with `contacts` contacts throughout.
+double slope_acceleration(BodySet<double>& set, double theta, double mu, std::size_t contacts) {
   World<device::cpu, double, PyramidFriction, Jacobi<Gather>> w(set, exact_settings(mu));
   const std::array<double, 3> down = {-std::cos(theta), 0, -std::sin(theta)};
   auto speed = [&] {
@@ -44,8 +40,21 @@ double box_incline_acceleration(double theta, double mu) {
   };
   for (int i = 0; i < 100; ++i) w.step();
   const double v1 = speed();
-  for (int i = 0; i < 200; ++i) REQUIRE(w.step().solver.contacts == 4);
+  for (int i = 0; i < 200; ++i) REQUIRE(w.step().solver.contacts == contacts);
   return (speed() - v1) / (200 * 0.002);
+}
+
+// A box of half extents h released resting on the plane tilted by theta about
+// y; its acceleration along the slope between 0.2 s and 0.6 s. The contact's
+// first tangent lies along the slope (as for the sphere on the incline), so
+// the friction pyramid bounds the force exactly.
+double box_incline_acceleration(double theta, double mu) {
+  BodySet<double> set;
+  const std::array<double, 3> n = incline_normal(theta);
+  set.add_plane(n, 0);
+  const double hz = 0.25;
+  set.add_box({hz * n[0], 0, hz * n[2]}, {0.5, 0.4, hz}, 1.0, turn(-theta, 0, 1, 0));
+  return slope_acceleration(set, theta, mu, 4);
 }
 
 // A box of half extents (hx, 0.3, hz) standing on its -x bottom edge, turned
@@ -103,19 +112,10 @@ TEST_CASE("a box tips over its edge exactly when its centre of mass passes the e
 TEST_CASE("a capsule rolls down an incline at g sin(theta) / (1 + I / (m r^2))", "[rbd_physics][shapes]") {
   const double theta = 20 * M_PI / 180, r = 0.3, L = 0.6, m = 1.5;
   BodySet<double> set;
-  const std::array<double, 3> n = {-std::sin(theta), 0, std::cos(theta)};
+  const std::array<double, 3> n = incline_normal(theta);
   set.add_plane(n, 0);
   set.add_capsule({r * n[0], 0, r * n[2]}, r, L, m, turn(M_PI / 2, 0, 0, 1));  // its axis along y
-  World<device::cpu, double, PyramidFriction, Jacobi<Gather>> w(set, exact_settings(0.8));
-  const std::array<double, 3> down = {-std::cos(theta), 0, -std::sin(theta)};
-  auto speed = [&] {
-    w.syncHost();
-    return set[1].v[0] * down[0] + set[1].v[2] * down[2];
-  };
-  for (int i = 0; i < 100; ++i) w.step();
-  const double v1 = speed();
-  for (int i = 0; i < 200; ++i) REQUIRE(w.step().solver.contacts == 2);
-  const double a = (speed() - v1) / (200 * 0.002);
+  const double a = slope_acceleration(set, theta, 0.8, 2);
   const double axial = solid_capsule(r, L, m).inertia[0];
   CHECK(a == Approx(g * std::sin(theta) / (1 + axial / (m * r * r))).epsilon(0.01));
 }
