@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <random>
+#include <vector>
 
 #include "gpusolve/rbd/bodies/body_set.hpp"
 
@@ -90,17 +91,24 @@ rbd::BodySet<T> cube_pile(std::size_t n) {
 
 // The mixed pile: the cube pile's lattice filled in turn with a sphere
 // (radius 1), a box (half extents 1, 0.7, 0.5), a capsule (radius 0.5, half
-// length 0.9), all of mass 1 and turned at random.
+// length 0.9) and a clump of three spheres (radius 0.6, 0.55 from its
+// centre), all of mass 1 and turned at random.
 template <class T>
 rbd::BodySet<T> mixed_pile(std::size_t n) {
   rbd::BodySet<T> set;
   RandomTurns turns;
+  std::vector<rbd::Part<T>> clump;
+  for (int k = 0; k < 3; ++k) {
+    const double a = 2 * 3.14159265358979 * k / 3;
+    clump.push_back({rbd::sphere, {T(0.6), 0, 0, 0}, {T(0.55 * std::cos(a)), T(0.55 * std::sin(a)), T(0)}, {1, 0, 0, 0}});
+  }
   const std::size_t L = jittered_lattice(n, 3.6, 1.8, [&](std::size_t i, const std::array<double, 3>& c) {
     const std::array<T, 3> x{T(c[0]), T(c[1]), T(c[2])};
     const std::array<T, 4> q = turns.next<T>();
-    if (i % 3 == 0) set.add_sphere(x, T(1), T(1));
-    if (i % 3 == 1) set.add_box(x, {T(1), T(0.7), T(0.5)}, T(1), q);
-    if (i % 3 == 2) set.add_capsule(x, T(0.5), T(0.9), T(1), q);
+    if (i % 4 == 0) set.add_sphere(x, T(1), T(1));
+    if (i % 4 == 1) set.add_box(x, {T(1), T(0.7), T(0.5)}, T(1), q);
+    if (i % 4 == 2) set.add_capsule(x, T(0.5), T(0.9), T(1), q);
+    if (i % 4 == 3) set.add_compound(x, clump, T(1), q);
   });
   add_open_box(set, L, 3.6);
   return set;

@@ -1,8 +1,10 @@
-// blocks: a pyramid of boxes, and boxes, capsules and spheres dropped onto it
-// (pe's primitives together; its GPU integration moved boxes, thesis Fig. 11).
+// blocks: a pyramid of boxes, and boxes, capsules, spheres and compounds
+// dropped onto it (pe's primitives and unions together; its GPU integration
+// moved boxes, thesis Fig. 11).
 #pragma once
 
 #include <cmath>
+#include <vector>
 
 #include "gpusolve/rbd/bodies/body_set.hpp"
 #include "gpusolve/rbd/bodies/mass_properties.hpp"
@@ -15,8 +17,9 @@ namespace scenes {
 // A pyramid of 6 rows of cubes (half extent 1, 21 of them) stands on the floor
 // in an open box of planes 14 to each side. Above it `scale` bodies wait on a
 // lattice of spacing 3.5, turned at random, a box (half extents 1, 0.6, 0.4),
-// a capsule (radius 0.5, half length 1) and a sphere (radius 1) in turn, all
-// of density 1; they fall onto the pyramid and scatter around it.
+// a capsule (radius 0.5, half length 1), a sphere (radius 1) and a compound
+// (a clump of three spheres of radius 0.6, or a hammer: a capsule handle with
+// a box head) in turn, all of density 1; they fall onto the pyramid and scatter around it.
 template <class T>
 class Blocks {
  public:
@@ -27,6 +30,7 @@ class Blocks {
   void build(gpusolve::rbd::BodySet<T>& set) {
     using gpusolve::rbd::solid_box;
     using gpusolve::rbd::solid_capsule;
+    using gpusolve::rbd::solid_compound;
     constexpr double half = 14.0, spacing = 3.5;
     set.add_plane({0, 0, 1}, 0);
     set.add_plane({1, 0, 0}, T(-half));
@@ -37,6 +41,13 @@ class Blocks {
     for (int row = 0; row < 6; ++row)
       for (int k = 0; k + row < 6; ++k)
         set.add_box({T((k - 0.5 * (5 - row)) * 2.02), 0, T(1 + 2 * row)}, cube, solid_box(cube, T(1)).volume);
+    using Part = gpusolve::rbd::Part<T>;
+    using gpusolve::rbd::capsule, gpusolve::rbd::box, gpusolve::rbd::sphere;
+    const std::vector<Part> clump = {{sphere, {T(0.6), 0, 0, 0}, {T(0.55), 0, 0}, {1, 0, 0, 0}},
+                                     {sphere, {T(0.6), 0, 0, 0}, {T(-0.28), T(0.48), 0}, {1, 0, 0, 0}},
+                                     {sphere, {T(0.6), 0, 0, 0}, {T(-0.28), T(-0.48), 0}, {1, 0, 0, 0}}};
+    const std::vector<Part> hammer = {{capsule, {T(0.3), T(1), 0, 0}, {0, 0, 0}, {1, 0, 0, 0}},
+                                      {box, {T(0.4), T(0.7), T(0.4), 0}, {T(1.5), 0, 0}, {1, 0, 0, 0}}};
     Random rnd(o_.seed);
     const long n = *o_.scale;
     const int side = 5;
@@ -45,9 +56,13 @@ class Blocks {
                                T(16 + (i / (side * side)) * spacing)};
       const double ax = rnd.uniform(-1, 1), ay = rnd.uniform(-1, 1), len = std::sqrt(ax * ax + ay * ay + 1);
       const auto q = rotation<T>({T(ax / len), T(ay / len), T(1 / len)}, rnd.uniform(0, 2 * pi));
-      if (i % 3 == 0) set.add_box(x, brick, solid_box(brick, T(1)).volume, q);
-      if (i % 3 == 1) set.add_capsule(x, T(0.5), T(1), solid_capsule(T(0.5), T(1), T(1)).volume, q);
-      if (i % 3 == 2) set.add_sphere(x, T(sphere_radius), sphere_mass(T(sphere_radius)));
+      if (i % 4 == 0) set.add_box(x, brick, solid_box(brick, T(1)).volume, q);
+      if (i % 4 == 1) set.add_capsule(x, T(0.5), T(1), solid_capsule(T(0.5), T(1), T(1)).volume, q);
+      if (i % 4 == 2) set.add_sphere(x, T(sphere_radius), sphere_mass(T(sphere_radius)));
+      if (i % 4 == 3) {
+        const auto& parts = i % 8 == 3 ? clump : hammer;
+        set.add_compound(x, parts, solid_compound(parts, T(1)).volume, q);
+      }
     }
   }
 

@@ -1,7 +1,9 @@
-// BodySet validation (typed errors naming body and field) and BodyManager synchronisation.
+// BodySet validation (typed errors naming body and field, a compound's part among them) and BodyManager synchronisation.
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "catch_compat.hpp"
 #include "gpusolve/rbd/bodies/body_manager.hpp"
@@ -200,4 +202,36 @@ TEST_CASE("BodyManager: lazy add, skipped leading bodies, removal threshold", "[
     s.add_sphere({0.f, 0.f, 0.f}, 1.f, 1.f);
     CHECK_THROWS_AS(m.syncHost(), SizeMismatchError);
   }
+}
+
+namespace {
+// A sphere part of radius r centred at `at`.
+Part<double> ball(double r, std::array<double, 3> at) { return {sphere, {r, 0, 0, 0}, at, {1, 0, 0, 0}}; }
+}  // namespace
+
+TEST_CASE("bad compound input names the body and the part's field, and adds nothing", "[rbd][bodies][compound]") {
+  BodySet<double> set;
+  set.add_sphere({0, 0, 0}, 1, 1);
+  require_bad([&] { set.add_compound({0, 0, 0}, {}, 1.0); }, 1, "parts");
+  require_bad([&] { set.add_compound({0, 0, 0}, {Part<double>{plane, {0, 0, 1, 0}, {}, {1, 0, 0, 0}}}, 1.0); }, 1,
+              "parts[0].shape");
+  require_bad([&] { set.add_compound({0, 0, 0}, {ball(1, {}), ball(-1, {1, 0, 0})}, 1.0); }, 1,
+              "parts[1].radius");
+  require_bad([&] { set.add_compound({0, 0, 0}, {Part<double>{box, {1, 0, 1, 0}, {}, {1, 0, 0, 0}}}, 1.0); }, 1,
+              "parts[0].half_extents");
+  require_bad([&] { set.add_compound({0, 0, 0}, {Part<double>{sphere, {1, 0, 0, 0}, {}, {2, 0, 0, 0}}}, 1.0); }, 1,
+              "parts[0].q");
+  require_bad([&] { set.add_compound({0, 0, 0}, {ball(1, {0, std::nan(""), 0})}, 1.0); }, 1, "parts[0].pos");
+  require_bad([&] { set.add_compound({0, 0, 0}, {ball(1, {})}, 0.0); }, 1, "mass");
+  require_bad([&] { set.add_compound({0, 0, 0}, std::vector<Part<double>>(max_parts + 1, ball(1, {})), 1.0); }, 1,
+              "parts");
+  CHECK(set.size() == 1);
+  CHECK(set.parts().empty());
+  // A record changed in place is checked against its parts at validation.
+  set.add_compound({0, 0, 0}, {ball(1, {}), ball(1, {2, 0, 0})}, 1.0);
+  set[1].first_part = 1;
+  require_bad([&] { set.validate(); }, 1, "first_part");
+  set[1].first_part = 0;
+  set[1].shape_param[0] = 0;
+  require_bad([&] { set.validate(); }, 1, "parts");
 }

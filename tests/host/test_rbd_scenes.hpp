@@ -55,10 +55,25 @@ BodySet<T> implosion(std::size_t n, T speed, T r = T(0.5)) {
   return set;
 }
 
+// A clump of three spheres of radius 0.22 in a triangle (Chrono's DEM-Engine
+// builds grains so), and a hammer: a capsule handle with a box head.
+template <class T>
+std::vector<Part<T>> clump() {
+  std::vector<Part<T>> parts(3);
+  const T at[3][2] = {{T(0.2), T(0)}, {T(-0.1), T(0.17)}, {T(-0.1), T(-0.17)}};
+  for (int k = 0; k < 3; ++k) parts[k] = {sphere, {T(0.22), 0, 0, 0}, {at[k][0], at[k][1], T(0)}, {1, 0, 0, 0}};
+  return parts;
+}
+template <class T>
+std::vector<Part<T>> hammer() {
+  return {{capsule, {T(0.12), T(0.3), 0, 0}, {T(-0.1), T(0), T(0)}, {1, 0, 0, 0}},
+          {box, {T(0.1), T(0.25), T(0.15), 0}, {T(0.3), T(0), T(0)}, {T(0.9950042), T(0.0998334), 0, 0}}};
+}
+
 // A heap of every moving shape: n x n columns of `layers` bodies on the plane
 // z = 0, spaced 1.1 apart (a capsule reaches 0.7, so columns touch), the
-// bodies of a row along y of one kind, the rows and layers sphere, box and
-// capsule in turn, turned a little at random (seed fixed), the layers 0.9
+// bodies of a row along y of one kind, the rows and layers sphere, box,
+// capsule and compound (clump or hammer, in turn along y) in turn, turned a little at random (seed fixed), the layers 0.9
 // apart: the heap settles with every shape pair in contact.
 template <class T>
 BodySet<T> mixed_heap(std::size_t n, std::size_t layers, unsigned seed = 3) {
@@ -74,9 +89,10 @@ BodySet<T> mixed_heap(std::size_t n, std::size_t layers, unsigned seed = 3) {
         const double a = tilt(gen), b = tilt(gen);
         const double w = std::sqrt(1 - a * a - b * b);
         const std::array<T, 4> q{T(w), T(a), T(b), T(0)};
-        if (k % 3 == 0) set.add_sphere(x, T(0.45), T(1));
-        if (k % 3 == 1) set.add_box(x, {T(0.45), T(0.52), T(0.35)}, T(1), q);
-        if (k % 3 == 2) set.add_capsule(x, T(0.3), T(0.4), T(1), q);
+        if (k % 4 == 0) set.add_sphere(x, T(0.45), T(1));
+        if (k % 4 == 1) set.add_box(x, {T(0.45), T(0.52), T(0.35)}, T(1), q);
+        if (k % 4 == 2) set.add_capsule(x, T(0.3), T(0.4), T(1), q);
+        if (k % 4 == 3) set.add_compound(x, (i + j) % 2 ? clump<T>() : hammer<T>(), T(1), q);
       }
   return set;
 }

@@ -85,6 +85,10 @@ TEST_CASE("contacts of a mixed heap equal a brute-force search through the shape
   s.add_box({2.f, 2.f, 4.f}, {5.f, 0.5f, 0.5f}, 3.f);                    // a long moving box: the grid's cells follow it
   s.add_fixed_box({2.f, -9.f, 1.f}, {6.f, 6.f, 1.f});                    // fixed and larger: an obstacle
   s.add_fixed_capsule({1.f, 2.f, 0.3f}, 0.3f, 0.5f);                      // fixed, small: on the grid
+  s.add_compound({8.f, 8.f, 6.f}, clump<float>(), 1.f);                   // two compounds whose parts touch
+  s.add_compound({8.45f, 8.1f, 6.1f}, hammer<float>(), 1.f, {0.8f, 0.f, 0.6f, 0.f});
+  s.add_compound({8.f, 2.f, 0.21f}, clump<float>(), 1.f);                  // on the plane, a box on it
+  s.add_box({8.f, 2.f, 0.75f}, {0.3f, 0.3f, 0.3f}, 1.f);
   s[7].status = removed;
   const float margin = 0.05f;
   BodyManager<device::cpu> m(s);
@@ -108,8 +112,9 @@ TEST_CASE("contacts of a mixed heap equal a brute-force search through the shape
       if (s[i].status != active && s[j].status != active) continue;
       const bool grid_pair = !obstacle(i) && !obstacle(j);
       if (grid_pair ? j < i : obstacle(i)) continue;  // each pair once, as detection orders it
-      const Manifold<float> mf = collide(v.shape[i], placed_shape<float>(v, i), v.shape[j], placed_shape<float>(v, j), margin);
-      for (int p = 0; p < mf.count; ++p) expected.emplace_back(std::uint32_t(i), std::uint32_t(j), mf.points[p].feature);
+      for_each_manifold<all_shapes, float>(v, i, j, margin, false, [&](const Manifold<float>& mf) {
+        for (int p = 0; p < mf.count; ++p) expected.emplace_back(std::uint32_t(i), std::uint32_t(j), mf.points[p].feature);
+      });
     }
   // Detection lists a pair's points in its manifold's order; compare as sets within a pair.
   std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> found;
@@ -122,14 +127,14 @@ TEST_CASE("contacts of a mixed heap equal a brute-force search through the shape
   std::sort(expected.begin(), expected.end());
   std::sort(found.begin(), found.end());
   CHECK(found == expected);
-  // Every pair of kinds is among them (plane-plane aside).
-  std::array<std::array<std::size_t, 4>, 4> kinds{};
+  // Every pair of kinds is among them (plane-plane aside), compounds too.
+  std::array<std::array<std::size_t, shape_kinds>, shape_kinds> kinds{};
   for (const auto& e : expected) {
     const int ka = s[std::get<0>(e)].shape, kb = s[std::get<1>(e)].shape;
     ++kinds[std::min(ka, kb)][std::max(ka, kb)];
   }
-  for (int ka = 0; ka < 4; ++ka)
-    for (int kb = ka; kb < 4; ++kb) {
+  for (int ka = 0; ka < shape_kinds; ++ka)
+    for (int kb = ka; kb < shape_kinds; ++kb) {
       INFO("kinds " << ka << ", " << kb << ": " << kinds[ka][kb] << " contacts");
       if (ka != plane || kb != plane) CHECK(kinds[ka][kb] > 0);
     }

@@ -1,7 +1,8 @@
-// Boxes and capsules in a World on the CPU backend, against closed forms:
+// Boxes, capsules and compounds in a World on the CPU backend, against closed forms:
 // resting, sticking and sliding on an incline, tipping over an edge, rolling.
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "catch_compat.hpp"
 #include "test_rbd_scenes.hpp"
@@ -118,6 +119,27 @@ TEST_CASE("a capsule rolls down an incline at g sin(theta) / (1 + I / (m r^2))",
   const double a = slope_acceleration(set, theta, 0.8, 2);
   const double axial = solid_capsule(r, L, m).inertia[0];
   CHECK(a == Approx(g * std::sin(theta) / (1 + axial / (m * r * r))).epsilon(0.01));
+}
+
+TEST_CASE("a compound of two wheels on an axle rolls down an incline at g sin(theta) / (1 + I / (m r^2))",
+          "[rbd_physics][shapes][compound]") {
+  // Wheels: spheres of radius 0.3 at y = -+0.5; the axle: a capsule of radius
+  // 0.1 along y (its x axis turned onto y), clear of the slope. The mass is
+  // shared by volume; the axis inertia is the wheels' 2/5 m r^2 and the axle's axial term.
+  const double theta = 20 * M_PI / 180, r = 0.3, m = 2.0;
+  const std::vector<Part<double>> parts = {{sphere, {r, 0, 0, 0}, {0, -0.5, 0}, {1, 0, 0, 0}},
+                                           {sphere, {r, 0, 0, 0}, {0, 0.5, 0}, {1, 0, 0, 0}},
+                                           {capsule, {0.1, 0.5, 0, 0}, {0, 0, 0}, turn(M_PI / 2, 0, 0, 1)}};
+  BodySet<double> set;
+  const std::array<double, 3> n = incline_normal(theta);
+  set.add_plane(n, 0);
+  set.add_compound({r * n[0], 0, r * n[2]}, parts, m);
+  const double vw = solid_sphere(r, 1.0).volume, va = solid_capsule(0.1, 0.5, 1.0).volume;
+  const double mw = m * vw / (2 * vw + va), ma = m - 2 * mw;
+  const double axis = 2 * solid_sphere(r, mw).inertia[0] + solid_capsule(0.1, 0.5, ma).inertia[0];
+  CHECK(set[1].inertia[4] == Approx(axis));
+  const double a = slope_acceleration(set, theta, 0.8, 2);
+  CHECK(a == Approx(g * std::sin(theta) / (1 + axis / (m * r * r))).epsilon(0.01));
 }
 
 TEST_CASE("a stack of boxes stands", "[rbd_physics][shapes]") {

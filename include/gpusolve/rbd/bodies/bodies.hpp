@@ -12,6 +12,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/container/logical_view.hpp"
+#include "gpusolve/rbd/bodies/parts.hpp"
 #include "gpusolve/rbd/bodies/shapes.hpp"
 
 namespace gpusolve::rbd {
@@ -47,8 +48,12 @@ struct Bodies {
   VecD1 radius;             // bounding-sphere radius (planes: +infinity)
   VecD2 aabb;               // n x 6: (min x, y, z, max x, y, z) of the bounding sphere
   VecD1 motion;             // running average of |v| + |w| (sleep heuristics, statistics)
+  D1<std::uint32_t> first_part;  // a compound's first row of `parts` (others: 0)
+  // The parts of the compounds, not one per body (parts.hpp).
+  Parts<Device, T> parts;
   // The shape kinds among the bodies (host side): collision detection compiles
-  // in the pairs of these only. BodyManager keeps it exact; a store filled by
+  // in the pairs of these only (a compound's parts' kinds among them).
+  // BodyManager keeps it exact; a store filled by
   // hand says all_shapes unless told less.
   ShapeMask shapes = all_shapes;
 
@@ -81,6 +86,7 @@ struct Bodies {
     if (capacity_ != o.capacity()) *this = Bodies(o.capacity());
     n_ = o.size();
     shapes = o.shapes;
+    parts = o.parts;
     zip_fields(*this, o, [](auto& dst, const auto& src, std::size_t, bool) { dst = src; });
     return *this;
   }
@@ -101,6 +107,8 @@ struct Bodies {
     VecD1View radius;
     VecD2View aabb;
     VecD1View motion;
+    D1View<std::uint32_t> first_part;
+    typename Parts<Device, T>::View parts;
 
     GPUSOLVE_HD std::size_t size() const { return count; }
     // A body that the integrator moves.
@@ -127,7 +135,9 @@ struct Bodies {
                 logical(torque.view(), n_),
                 logical(radius.view(), n_),
                 logical(aabb.view(), n_),
-                logical(motion.view(), n_)};
+                logical(motion.view(), n_),
+                logical(first_part.view(), n_),
+                parts.view()};
   }
 
  private:
@@ -168,6 +178,7 @@ void zip_fields(A& a, B& b, F&& f) {
   f(a.radius, b.radius, 1, false);
   f(a.aabb, b.aabb, 6, true);
   f(a.motion, b.motion, 1, true);
+  f(a.first_part, b.first_part, 1, false);
 }
 
 }  // namespace gpusolve::rbd

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 
 #include "gpusolve/rbd/bodies/shapes.hpp"
 
@@ -22,6 +23,7 @@ struct Body {
   std::array<T, 4> q{1, 0, 0, 0};  // (w, x, y, z), as in gpusolve::math
   std::array<T, 3> v{}, w{}, force{}, torque{};
   T motion = 0;
+  std::uint32_t first_part = 0;  // a compound's first part in its BodySet's parts()
 };
 
 }  // namespace gpusolve::rbd

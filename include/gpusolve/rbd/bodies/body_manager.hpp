@@ -13,6 +13,8 @@
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/bodies/body_set.hpp"
 #include "gpusolve/rbd/bodies/derived_fields.hpp"
+#include "gpusolve/math/quaternion.hpp"
+#include "gpusolve/math/rotation.hpp"
 
 namespace gpusolve::rbd {
 
@@ -88,9 +90,11 @@ class BodyManager {
     ShapeMask shapes = 0;
     for (std::size_t i = 0; i < n; ++i)
       if (recs[i].status != removed) {
-        validate_body(recs[i], i);
+        host_.validate(i);
         shapes |= shape_bit(recs[i].shape);
       }
+    if (shapes & shape_bit(compound))
+      for (const Part<T>& part : host_.parts()) shapes |= shape_bit(part.shape);
     // Growth reallocates (contents lost), so double to keep appends amortised.
     if (n > device_.capacity()) {
       const std::size_t cap = std::max(n, 2 * device_.capacity());
@@ -106,6 +110,7 @@ class BodyManager {
     update_derived(device::cpu{}, staging_.view(), 0, n);
     copy_fields(device_, staging_, 0, first, false, stream);
     copy_fields(device_, staging_, first, n, true, stream);
+    if (full || staging_.parts.size() != host_.parts().size()) copy_parts();
     rep.bodies = n;
     rep.full_from = first;
     return rep;
@@ -154,10 +159,28 @@ class BodyManager {
     for (std::size_t c = 0; c < shape_param_rows; ++c) s.shape_param(i, c) = r.shape_param[c];
     if (!all) return;
     s.inv_mass(i) = r.inv_mass;
+    s.first_part(i) = r.first_part;
     for (std::size_t c = 0; c < 9; ++c) {
       s.inertia(i, c) = r.inertia[c];
       s.inv_inertia_body(i, c) = r.inv_inertia_body[c];
     }
+  }
+
+  // The BodySet's parts, rotations from their quaternions, to the device (all
+  // of them: parts only ever grow, and a scene holds few).
+  void copy_parts() {
+    const auto& parts = host_.parts();
+    auto& s = staging_.parts;
+    s.resize(parts.size());
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      const Part<T>& part = parts[k];
+      s.shape(k) = part.shape;
+      for (std::size_t c = 0; c < shape_param_rows; ++c) s.shape_param(k, c) = part.shape_param[c];
+      for (std::size_t c = 0; c < 3; ++c) s.pos(k, c) = part.pos[c];
+      const auto R = math::to_rotation_matrix(math::Quaternion<T>(part.q[0], part.q[1], part.q[2], part.q[3]));
+      for (std::size_t c = 0; c < 9; ++c) s.R(k, c) = R[c];
+    }
+    device_.parts = s;
   }
 
   void unpack(std::size_t i) {

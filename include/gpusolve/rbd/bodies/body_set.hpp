@@ -1,8 +1,10 @@
 // BodySet: a host-side, growable list of Body records with validating builders.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -59,6 +61,23 @@ class BodySet {
     return add_fixed(capsule, {radius, half_length, 0, 0}, pos, q);
   }
 
+  // A moving compound (pe's Union): one rigid body made of the sphere, box and
+  // capsule parts, placed in the compound's frame, which the body's q turns and
+  // whose origin lies at `pos`. The mass is shared by volume; the body's
+  // centre (Body::pos) is the centre of mass, with the parts moved to match,
+  // and its inertia the full tensor about it (solid_compound).
+  std::size_t add_compound(const Vec& pos, const std::vector<Part<T>>& parts, T mass, const Quat& q = unrotated) {
+    require_positive(mass, "mass");
+    const CompoundProperties<T> c = compound_properties(parts, mass, q);
+    return add_moving(compound, {}, centre_of(pos, c, q), q, mass, c.inertia, parts, c.centre);
+  }
+  // A compound that never moves (its centre is its parts' centre of volume).
+  std::size_t add_fixed_compound(const Vec& pos, const std::vector<Part<T>>& parts, const Quat& q = unrotated) {
+    const CompoundProperties<T> c = compound_properties(parts, T(1), q);
+    Body<T> b = fixed_record(compound, {}, centre_of(pos, c, q), q);
+    return add_with_parts(b, parts, c.centre);
+  }
+
   // The fixed half-space n.x <= d; n need not be normalised but must not be zero.
   std::size_t add_plane(const Vec& n, T d) {
     const std::size_t index = bodies_.size();
@@ -73,23 +92,28 @@ class BodySet {
     return add(b);
   }
 
-  // Appends any validated record; returns its index.
+  // Appends any validated record (a compound's parts already in parts());
+  // returns its index.
   std::size_t add(const Body<T>& b) {
-    validate_body(b, bodies_.size());
+    validate_body(b, bodies_.size(), parts_);
     bodies_.push_back(b);
     return bodies_.size() - 1;
   }
 
-  // Validates every record (after the user's engine changed them in place).
+  // Validates every record (after the user's engine changed them in place), or record i.
   void validate() const {
-    for (std::size_t i = 0; i < bodies_.size(); ++i) validate_body(bodies_[i], i);
+    for (std::size_t i = 0; i < bodies_.size(); ++i) validate(i);
   }
+  void validate(std::size_t i) const { validate_body(bodies_[i], i, parts_); }
 
   std::size_t size() const { return bodies_.size(); }
   Body<T>& operator[](std::size_t i) { return bodies_[i]; }
   const Body<T>& operator[](std::size_t i) const { return bodies_[i]; }
   std::vector<Body<T>>& records() { return bodies_; }
   const std::vector<Body<T>>& records() const { return bodies_; }
+  // The parts of every compound, in the order they were added, positions
+  // relative to their body's centre of mass. Parts are never removed.
+  const std::vector<Part<T>>& parts() const { return parts_; }
 
  private:
   void require_positive(T x, const char* field) const {
@@ -99,11 +123,8 @@ class BodySet {
   std::size_t add_moving(ShapeKind kind, const std::array<T, shape_param_rows>& param, const Vec& pos, const Quat& q,
                          T mass, const Vec& principal_inertia) {
     require_positive(mass, "mass");
-    Body<T> b;
-    b.shape = kind;
-    b.shape_param = param;
-    b.pos = pos;
-    b.q = q;
+    Body<T> b = fixed_record(kind, param, pos, q);
+    b.status = active;
     b.inv_mass = T(1) / mass;
     for (int k = 0; k < 3; ++k) {
       const T I = principal_inertia[k];
@@ -114,16 +135,76 @@ class BodySet {
     }
     return add(b);
   }
-  std::size_t add_fixed(ShapeKind kind, const std::array<T, shape_param_rows>& param, const Vec& pos, const Quat& q) {
+  // A moving compound of the given full inertia tensor (body frame, about its centre).
+  std::size_t add_moving(ShapeKind kind, const std::array<T, shape_param_rows>& param, const Vec& pos, const Quat& q,
+                         T mass, const std::array<T, 9>& inertia, const std::vector<Part<T>>& parts,
+                         const Vec& centre) {
+    Body<T> b = fixed_record(kind, param, pos, q);
+    b.status = active;
+    b.inv_mass = T(1) / mass;
+    b.inertia = inertia;
+    const math::Matrix3x3<double> I(inertia[0], inertia[1], inertia[2], inertia[3], inertia[4], inertia[5],
+                                    inertia[6], inertia[7], inertia[8]);
+    const math::Matrix3x3<double> inv = math::inverse_spd(I);
+    for (int k = 0; k < 9; ++k) b.inv_inertia_body[k] = T(inv[k]);
+    return add_with_parts(b, parts, centre);
+  }
+  Body<T> fixed_record(ShapeKind kind, const std::array<T, shape_param_rows>& param, const Vec& pos,
+                       const Quat& q) const {
     Body<T> b;
     b.status = fixed;
     b.shape = kind;
     b.shape_param = param;
     b.pos = pos;
     b.q = q;
-    return add(b);
+    return b;
+  }
+  std::size_t add_fixed(ShapeKind kind, const std::array<T, shape_param_rows>& param, const Vec& pos, const Quat& q) {
+    return add(fixed_record(kind, param, pos, q));
   }
 
+  // The compound's mass properties, after its parts were checked (a body
+  // with none, or one that is not a primitive, is named before any arithmetic).
+  CompoundProperties<T> compound_properties(const std::vector<Part<T>>& parts, T mass, const Quat& q) const {
+    const std::size_t index = bodies_.size();
+    if (parts.empty() || parts.size() > max_parts)
+      throw InvalidBodyError(index, "parts", "a compound has 1 to 256 parts");
+    for (std::size_t k = 0; k < parts.size(); ++k) validate_part(parts[k], k, index);
+    detail::require_unit(q, index, "q");
+    return solid_compound(parts, mass);
+  }
+  // Where the centre `c` of a compound placed at pos, turned by q, lies.
+  static Vec centre_of(const Vec& pos, const CompoundProperties<T>& c, const Quat& q) {
+    const math::Matrix3x3<T> R = math::to_rotation_matrix(math::Quaternion<T>(q[0], q[1], q[2], q[3]));
+    Vec x = pos;
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) x[r] += R(r, k) * c.centre[k];
+    return x;
+  }
+  // Appends the parts, moved to the centre, then the record that owns them
+  // (its part count, bounds and feature size from them).
+  std::size_t add_with_parts(Body<T>& b, const std::vector<Part<T>>& parts, const Vec& centre) {
+    T bound = 0, feature = std::numeric_limits<T>::infinity();
+    b.first_part = std::uint32_t(parts_.size());
+    for (Part<T> part : parts) {
+      for (int r = 0; r < 3; ++r) part.pos[r] -= centre[r];
+      const auto& p = part.shape_param;
+      const T reach = std::sqrt(part.pos[0] * part.pos[0] + part.pos[1] * part.pos[1] + part.pos[2] * part.pos[2]) +
+                      primitive_bound<T>(part.shape, p[0], p[1], p[2]);
+      bound = std::max(bound, reach);
+      feature = std::min(feature, primitive_feature_size<T>(part.shape, p[0], p[1], p[2]));
+      parts_.push_back(part);
+    }
+    b.shape_param = {T(parts.size()), bound, feature, 0};
+    try {
+      return add(b);
+    } catch (...) {
+      parts_.resize(b.first_part);  // a rejected body leaves no parts behind
+      throw;
+    }
+  }
+
+  std::vector<Part<T>> parts_;
   std::vector<Body<T>> bodies_;
 };
 

@@ -2,9 +2,7 @@
 // (thesis UpdateBodyKernel): rotation matrix, world inverse inertia, bounds.
 #pragma once
 
-#include <cmath>
 #include <cstddef>
-#include <limits>
 #include <type_traits>
 
 #include "gpusolve/core/config.hpp"
@@ -42,38 +40,18 @@ struct UpdateBody {
     }
   }
   GPUSOLVE_HD T bounding_radius(std::size_t i) const {
-    switch (b.shape[i]) {
-      case sphere:
-        return b.shape_param(i, 0);
-      case box: {
-        const T x = b.shape_param(i, 0), y = b.shape_param(i, 1), z = b.shape_param(i, 2);
-        return std::sqrt(x * x + y * y + z * z);
-      }
-      case capsule:
-        return b.shape_param(i, 0) + b.shape_param(i, 1);
-      default:  // a plane bounds nothing
-        return std::numeric_limits<T>::infinity();
-    }
+    if (b.shape[i] == compound) return b.shape_param(i, 1);
+    return primitive_bound<T>(b.shape[i], b.shape_param(i, 0), b.shape_param(i, 1), b.shape_param(i, 2));
   }
 };
 
-// The size penetration is measured against (statistics/accuracy.hpp), defined
-// once: a sphere's or capsule's radius, a box's smallest half extent; a plane
-// has none (+infinity), so a body on a plane is measured against the body.
+// The size penetration is measured against (shapes.hpp); a compound's is its
+// smallest part's.
 template <class View>
 GPUSOLVE_HD auto feature_size(const View& b, std::size_t i) {
   using T = std::remove_cv_t<std::remove_reference_t<decltype(b.shape_param(i, 0))>>;
-  switch (b.shape[i]) {
-    case box: {
-      const T x = b.shape_param(i, 0), y = b.shape_param(i, 1), z = b.shape_param(i, 2);
-      const T xy = x < y ? x : y;
-      return xy < z ? xy : z;
-    }
-    case plane:
-      return std::numeric_limits<T>::infinity();
-    default:  // sphere, capsule
-      return b.shape_param(i, 0);
-  }
+  if (b.shape[i] == compound) return T(b.shape_param(i, 2));
+  return primitive_feature_size<T>(b.shape[i], b.shape_param(i, 0), b.shape_param(i, 1), b.shape_param(i, 2));
 }
 
 // Recomputes the derived fields of bodies [first, last) without touching motion

@@ -7,10 +7,12 @@
 #include <type_traits>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/error.hpp"
 #include "gpusolve/rbd/bodies/body.hpp"
+#include "gpusolve/rbd/bodies/parts.hpp"
 
 namespace gpusolve::rbd {
 
@@ -88,11 +90,60 @@ void require_finite(const std::array<T, N>& a, std::size_t body, const char* fie
     if (!std::isfinite(x)) throw InvalidBodyError(body, field, "is not finite");
 }
 
+template <class T>
+void require_unit(const std::array<T, 4>& q, std::size_t body, const std::string& field) {
+  const T qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+  if (std::abs(qq - T(1)) > T(1e-3)) throw InvalidBodyError(body, field, "is not a unit quaternion");
+}
+
+// The shape parameters p of a primitive of body `index`, fields named after
+// `prefix` (empty for the body itself, "parts[k]." for a compound's part).
+template <class T>
+void validate_primitive(std::uint8_t shape, const std::array<T, shape_param_rows>& p, std::size_t index,
+                        const std::string& prefix) {
+  switch (shape) {
+    case sphere:
+      if (!(p[0] > 0)) throw InvalidBodyError(index, prefix + "radius", "must be positive");
+      break;
+    case box:
+      for (int k = 0; k < 3; ++k)
+        if (!(p[k] > 0)) throw InvalidBodyError(index, prefix + "half_extents", "must be positive");
+      break;
+    case plane: {
+      const T nn = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+      if (std::abs(nn - T(1)) > T(1e-4)) throw InvalidBodyError(index, prefix + "normal", "must have unit length");
+      break;
+    }
+    case capsule:
+      if (!(p[0] > 0)) throw InvalidBodyError(index, prefix + "radius", "must be positive");
+      if (!(p[1] > 0)) throw InvalidBodyError(index, prefix + "half_length", "must be positive (a sphere has none)");
+      break;
+    default:
+      throw InvalidBodyError(index, prefix + "shape", "is not a ShapeKind");
+  }
+}
+
 }  // namespace detail
+
+// Throws InvalidBodyError naming body `index` and the first offending field
+// of part k (field "parts[k]. ..."): a sphere, box or capsule with valid
+// parameters, a finite position and a unit orientation.
+template <class T>
+void validate_part(const Part<T>& part, std::size_t k, std::size_t index) {
+  const std::string prefix = "parts[" + std::to_string(k) + "].";
+  if (!part_kind(part.shape))
+    throw InvalidBodyError(index, prefix + "shape", "must be a sphere, box or capsule (compounds do not nest)");
+  detail::require_finite(part.shape_param, index, (prefix + "shape_param").c_str());
+  detail::require_finite(part.pos, index, (prefix + "pos").c_str());
+  detail::require_finite(part.q, index, (prefix + "q").c_str());
+  detail::require_unit(part.q, index, prefix + "q");
+  detail::validate_primitive(part.shape, part.shape_param, index, prefix);
+}
 
 // Throws InvalidBodyError naming `index` and the first offending field. Checks:
 // finite state; positive sphere radius, box half extents and capsule radius
-// and half length; unit plane normal; planes fixed; fixed bodies massless (0 inverse mass and inertia);
+// and half length; unit plane normal; a compound's 1 to max_parts parts (their
+// own checks need the parts: the overload below); planes fixed; fixed bodies massless (0 inverse mass and inertia);
 // moving bodies with a positive finite mass and a positive inertia diagonal.
 template <class T>
 void validate_body(const Body<T>& b, std::size_t index) {
@@ -108,28 +159,15 @@ void validate_body(const Body<T>& b, std::size_t index) {
   require_finite(b.inv_inertia_body, index, "inv_inertia_body");
   if (b.status != active && b.status != fixed && b.status != removed)
     throw InvalidBodyError(index, "status", "is not a BodyStatus");
-  const T qq = b.q[0] * b.q[0] + b.q[1] * b.q[1] + b.q[2] * b.q[2] + b.q[3] * b.q[3];
-  if (std::abs(qq - T(1)) > T(1e-3)) throw InvalidBodyError(index, "q", "is not a unit quaternion");
-  const auto& p = b.shape_param;
-  switch (b.shape) {
-    case sphere:
-      if (!(p[0] > 0)) throw InvalidBodyError(index, "radius", "must be positive");
-      break;
-    case box:
-      for (int k = 0; k < 3; ++k)
-        if (!(p[k] > 0)) throw InvalidBodyError(index, "half_extents", "must be positive");
-      break;
-    case plane: {
-      const T nn = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
-      if (std::abs(nn - T(1)) > T(1e-4)) throw InvalidBodyError(index, "normal", "must have unit length");
-      break;
-    }
-    case capsule:
-      if (!(p[0] > 0)) throw InvalidBodyError(index, "radius", "must be positive");
-      if (!(p[1] > 0)) throw InvalidBodyError(index, "half_length", "must be positive (a sphere has none)");
-      break;
-    default:
-      throw InvalidBodyError(index, "shape", "is not a ShapeKind");
+  detail::require_unit(b.q, index, "q");
+  if (b.shape == compound) {
+    const T count = b.shape_param[0];
+    if (!(count >= 1) || count > T(max_parts) || count != T(std::size_t(count)))
+      throw InvalidBodyError(index, "parts", "a compound has 1 to 256 parts");
+    if (!(b.shape_param[1] > 0) || !(b.shape_param[2] > 0))
+      throw InvalidBodyError(index, "shape_param", "a compound's bounds come from its parts (BodySet::add_compound)");
+  } else {
+    detail::validate_primitive(b.shape, b.shape_param, index, "");
   }
   const bool moving = b.status == active;
   if (b.shape == plane && moving) throw InvalidBodyError(index, "status", "planes must be fixed");
@@ -145,6 +183,18 @@ void validate_body(const Body<T>& b, std::size_t index) {
     for (T x : b.inv_inertia_body)
       if (x != 0) throw InvalidBodyError(index, "inertia", "fixed bodies have inverse inertia 0");
   }
+}
+
+// validate_body, and for a compound its parts among `parts` (a BodySet's):
+// the range [first_part, first_part + count) must lie in it.
+template <class T>
+void validate_body(const Body<T>& b, std::size_t index, const std::vector<Part<T>>& parts) {
+  validate_body(b, index);
+  if (b.shape != compound) return;
+  const std::size_t count = std::size_t(b.shape_param[0]);
+  if (b.first_part > parts.size() || count > parts.size() - b.first_part)
+    throw InvalidBodyError(index, "first_part", "its parts lie past the end of the BodySet's parts");
+  for (std::size_t k = 0; k < count; ++k) validate_part(parts[b.first_part + k], k, index);
 }
 
 }  // namespace gpusolve::rbd

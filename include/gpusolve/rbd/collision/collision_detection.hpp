@@ -20,7 +20,7 @@
 #include "gpusolve/rbd/bodies/validation.hpp"
 #include "gpusolve/rbd/collision/broad_phase.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
-#include "gpusolve/rbd/collision/narrow_phase.hpp"
+#include "gpusolve/rbd/collision/body_manifolds.hpp"
 #include "gpusolve/rbd/execution/device_algorithms.hpp"
 #include "gpusolve/rbd/execution/graph_replay.hpp"
 #include "gpusolve/container/ensure_size.hpp"
@@ -56,8 +56,8 @@ struct ListObstacles {
 
 // The contact pairs of body i as body a: its grid neighbours j > i (a fixed
 // body only with moving ones) and, for a moving body, the obstacles, those
-// whose manifold has points (gaps below the margin). visit(j, points) meets
-// them in the grid's order; manifold(i, j) is their manifold, from the table
+// whose manifolds have points (gaps below the margin). visit(j, points) meets
+// them in the grid's order; manifolds(i, j, ...) are theirs (body_manifolds.hpp),
 // over the kinds in M. Between two spheres the gap comes from the grid's
 // packed copies (the same floats as the manifold's), so the walk loads
 // nothing more of j; where M holds spheres and planes only, no other pair is compiled in.
@@ -71,18 +71,34 @@ struct ContactWalk {
 
   static constexpr bool spheres_only = (M & ~spheres_and_planes) == 0;
 
-  GPUSOLVE_HD Manifold<T> manifold(std::size_t i, std::uint32_t j) const {
-    if constexpr (spheres_only) {  // body i is a sphere on the grid, j a sphere or a plane
-      const math::Vector3<T> pa = math::load3<T>(b.pos, i);
-      if (b.shape[j] == plane)
-        return within_margin(sphere_plane(pa, b.radius[i], math::Vector3<T>(b.shape_param(j, 0), b.shape_param(j, 1),
-                                                                           b.shape_param(j, 2)),
-                                          b.shape_param(j, 3)),
-                             margin);
-      return within_margin(sphere_sphere(pa, b.radius[i], math::load3<T>(b.pos, j), b.radius[j]), margin);
+  // The one manifold of sphere i against sphere or plane j (spheres_only).
+  GPUSOLVE_HD Manifold<T> sphere_manifold(std::size_t i, std::uint32_t j) const {
+    const math::Vector3<T> pa = math::load3<T>(b.pos, i);
+    if (b.shape[j] == plane)
+      return within_margin(sphere_plane(pa, b.radius[i], math::Vector3<T>(b.shape_param(j, 0), b.shape_param(j, 1),
+                                                                         b.shape_param(j, 2)),
+                                        b.shape_param(j, 3)),
+                           margin);
+    return within_margin(sphere_sphere(pa, b.radius[i], math::load3<T>(b.pos, j), b.radius[j]), margin);
+  }
+
+  // Calls f(m) for each manifold with points of the pair (i, j), in order or,
+  // where `reverse`, in the opposite order.
+  template <class F>
+  GPUSOLVE_HD void manifolds(std::size_t i, std::uint32_t j, bool reverse, F&& f) const {
+    if constexpr (spheres_only) {
+      (void)reverse;
+      const Manifold<T> m = sphere_manifold(i, j);
+      if (m.count > 0) f(m);
     } else {
-      return collide<M, T>(b.shape[i], placed_shape<T>(b, i), b.shape[j], placed_shape<T>(b, j), margin);
+      for_each_manifold<M, T>(b, i, j, margin, reverse, f);
     }
+  }
+  // The number of contact points of the pair (i, j).
+  GPUSOLVE_HD std::uint32_t points(std::size_t i, std::uint32_t j) const {
+    std::uint32_t count = 0;
+    manifolds(i, j, false, [&](const Manifold<T>& m) { count += std::uint32_t(m.count); });
+    return count;
   }
 
   template <class F>
@@ -98,13 +114,13 @@ struct ContactWalk {
       if (sphere_a && (spheres_only || b.shape[j] == sphere)) {
         if (sphere_sphere(pa, me.r, math::Vector3<T>(o.x[0], o.x[1], o.x[2]), o.r).points[0].gap < margin)
           visit(j, 1);
-      } else if (const int k = manifold(i, j).count) {
-        visit(j, std::uint32_t(k));
+      } else if (const std::uint32_t k = points(i, j)) {
+        visit(j, k);
       }
     });
     if (!active_a) return;
     for (std::uint32_t k = 0; k < *obstacle_count; ++k)
-      if (const int p = manifold(i, obstacles[k]).count) visit(obstacles[k], std::uint32_t(p));
+      if (const std::uint32_t p = points(i, obstacles[k])) visit(obstacles[k], p);
   }
 };
 
@@ -264,9 +280,12 @@ struct WriteContacts {
       std::uint32_t o = first;
       for (std::uint32_t p = 0; p < partners; ++p) {
         const std::uint32_t j = kept[p * n + i];
-        const Manifold<T> m = walk.manifold(i, j);
-        for (int k = 0; k < m.count && o < last; ++k) write(o++, i, j, m, k);
-        if (p + 1 == partners) pad(o, last, i, j, m.n);
+        math::Vector3<T> normal;
+        walk.manifolds(i, j, false, [&](const Manifold<T>& m) {
+          for (int k = 0; k < m.count && o < last; ++k) write(o++, i, j, m, k);
+          normal = m.n;
+        });
+        if (p + 1 == partners) pad(o, last, i, j, normal);
       }
       return;
     }
@@ -277,15 +296,18 @@ struct WriteContacts {
     std::uint32_t end = last;  // the points of pairs p.. go to [end, last)
     for (std::uint32_t p = partners; p-- > 0;) {
       const std::uint32_t j = contacts.b[first + p];
-      const Manifold<T> m = walk.manifold(i, j);
-      for (int k = m.count; k-- > 0 && end > first + p;) write(--end, i, j, m, k);
-      if (p == 0) pad(first, end, i, j, m.n);
+      math::Vector3<T> normal;
+      walk.manifolds(i, j, true, [&](const Manifold<T>& m) {
+        for (int k = m.count; k-- > 0 && end > first + p;) write(--end, i, j, m, k);
+        normal = m.n;
+      });
+      if (p == 0) pad(first, end, i, j, normal);
     }
   }
 
   // A sphere pair's one point (or an inert contact where it is no longer found).
   GPUSOLVE_HD void write_one(std::uint32_t o, std::size_t i, std::uint32_t j) const {
-    const Manifold<T> m = walk.manifold(i, j);
+    const Manifold<T> m = walk.sphere_manifold(i, j);
     if (m.count > 0)
       write(o, i, j, m, 0);
     else

@@ -1,7 +1,9 @@
 // snapshot: the Frame of a host BodySet (what the frame writers draw), removed bodies left out.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 
 #include "gpusolve/math/quaternion.hpp"
 #include "gpusolve/math/rotation.hpp"
@@ -10,6 +12,35 @@
 
 namespace gpusolve::rbd::io {
 
+namespace detail {
+
+// Adds one primitive at centre p, rotation R (body -> world), shape
+// parameters s, to the frame; a moving one is drawn with the moving bodies.
+template <class T>
+void add_primitive(Frame& f, std::uint8_t shape, const Frame::Vec3& p, const math::Matrix3x3<T>& R,
+                   const std::array<T, shape_param_rows>& s, bool moving, const Frame::Vec3& v) {
+  switch (shape) {
+    case sphere:
+      f.add_sphere(p, s[0], v);
+      break;
+    case box: {
+      Frame::Box x{p, {double(s[0]), double(s[1]), double(s[2])}, {}, moving};
+      for (int k = 0; k < 9; ++k) x.R[k] = R[k];
+      f.boxes.push_back(x);
+      break;
+    }
+    case capsule:
+      f.capsules.push_back({p, {double(R(0, 0)), double(R(1, 0)), double(R(2, 0))}, double(s[0]), double(s[1])});
+      break;
+    case plane:
+      f.planes.push_back({{double(s[0]), double(s[1]), double(s[2])}, double(s[3])});
+      break;
+  }
+}
+
+}  // namespace detail
+
+// Every body as its primitives (a compound as its parts, each at its place).
 template <class T>
 Frame snapshot(const BodySet<T>& bodies, std::size_t step, double time) {
   Frame f;
@@ -18,27 +49,20 @@ Frame snapshot(const BodySet<T>& bodies, std::size_t step, double time) {
   for (const auto& b : bodies.records()) {
     if (b.status == removed) continue;
     const Frame::Vec3 p{double(b.pos[0]), double(b.pos[1]), double(b.pos[2])};
-    const auto& s = b.shape_param;
-    switch (b.shape) {
-      case sphere:
-        f.add_sphere(p, s[0], {double(b.v[0]), double(b.v[1]), double(b.v[2])});
-        break;
-      case box: {
-        const auto R = math::to_rotation_matrix(math::Quaternion<T>(b.q[0], b.q[1], b.q[2], b.q[3]));
-        Frame::Box x{p, {double(s[0]), double(s[1]), double(s[2])}, {}, b.status == active};
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) x.R[3 * r + c] = R(r, c);
-        f.boxes.push_back(x);
-        break;
-      }
-      case capsule: {
-        const auto R = math::to_rotation_matrix(math::Quaternion<T>(b.q[0], b.q[1], b.q[2], b.q[3]));
-        f.capsules.push_back({p, {double(R(0, 0)), double(R(1, 0)), double(R(2, 0))}, double(s[0]), double(s[1])});
-        break;
-      }
-      case plane:
-        f.planes.push_back({{double(s[0]), double(s[1]), double(s[2])}, double(s[3])});
-        break;
+    const Frame::Vec3 v{double(b.v[0]), double(b.v[1]), double(b.v[2])};
+    const auto R = math::to_rotation_matrix(math::Quaternion<T>(b.q[0], b.q[1], b.q[2], b.q[3]));
+    const bool moving = b.status == active;
+    if (b.shape != compound) {
+      detail::add_primitive(f, b.shape, p, R, b.shape_param, moving, v);
+      continue;
+    }
+    for (std::size_t k = 0; k < std::size_t(b.shape_param[0]); ++k) {
+      const Part<T>& part = bodies.parts()[b.first_part + k];
+      const math::Vector3<T> offset(part.pos[0], part.pos[1], part.pos[2]);
+      const math::Vector3<T> x(R * offset);
+      const auto Rk = math::to_rotation_matrix(math::Quaternion<T>(part.q[0], part.q[1], part.q[2], part.q[3]));
+      detail::add_primitive(f, part.shape, {p[0] + x[0], p[1] + x[1], p[2] + x[2]}, math::Matrix3x3<T>(R * Rk),
+                            part.shape_param, moving, v);
     }
   }
   return f;

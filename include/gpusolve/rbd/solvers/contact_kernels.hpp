@@ -167,7 +167,8 @@ struct InverseBlocks {
     }
   }
   // The contacts of contact i's body pair: its neighbours in the (a, b) order
-  // with the same bodies (at most max_manifold_points in all).
+  // with the same bodies (a manifold's up to max_manifold_points; a compound's
+  // part pairs may add more, and take their shares alike).
   GPUSOLVE_HD std::uint32_t pair_points(std::size_t i) const {
     const std::size_t n = c.size();
     const std::uint32_t a = c.a[i], b = c.b[i];

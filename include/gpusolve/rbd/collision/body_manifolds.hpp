@@ -1,0 +1,95 @@
+// The manifolds of two bodies: one from the shape-pair table for two
+// primitives; where a body is a compound, one per pair of parts that touch,
+// each part placed in the world and met through its own kind's pairs.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/math.hpp"
+#include "gpusolve/rbd/bodies/shapes.hpp"
+#include "gpusolve/rbd/collision/manifold.hpp"
+#include "gpusolve/rbd/collision/narrow_phase.hpp"
+#include "gpusolve/rbd/collision/placed_shape.hpp"
+
+namespace gpusolve::rbd {
+
+// The feature id of a point between part pa of body a and part pb of body b:
+// the pair's own id (below 2^16) with the parts in the top bytes, so that warm
+// starting tells the points of different part pairs apart.
+GPUSOLVE_HD inline std::uint32_t part_feature(std::uint32_t feature, std::uint32_t pa, std::uint32_t pb) {
+  return feature | (pa << 24) | (pb << 16);
+}
+
+namespace detail {
+
+// A body's primitives: a compound's parts, any other body itself.
+template <class View>
+GPUSOLVE_HD std::uint32_t part_count(const View& b, std::size_t i) {
+  return b.shape[i] == compound ? std::uint32_t(b.shape_param(i, 0)) : 1u;
+}
+
+// Primitive k of body i in the world and its kind: part k of a compound at
+// x_i + R_i p_k, turned by R_i R_k; any other body itself (placed_shape).
+template <class T, class View>
+GPUSOLVE_HD PlacedShape<T> placed_primitive(const View& b, std::size_t i, std::uint32_t k, std::uint8_t& kind) {
+  kind = b.shape[i];
+  if (kind != compound) return placed_shape<T>(b, i);
+  const std::size_t part = b.first_part[i] + k;
+  const auto& parts = b.parts;
+  kind = parts.shape[part];
+  const math::Matrix3x3<T> R(b.R(i, 0), b.R(i, 1), b.R(i, 2), b.R(i, 3), b.R(i, 4), b.R(i, 5), b.R(i, 6),
+                             b.R(i, 7), b.R(i, 8));
+  const math::Matrix3x3<T> Rk(parts.R(part, 0), parts.R(part, 1), parts.R(part, 2), parts.R(part, 3),
+                              parts.R(part, 4), parts.R(part, 5), parts.R(part, 6), parts.R(part, 7),
+                              parts.R(part, 8));
+  const math::Vector3<T> offset(parts.pos(part, 0), parts.pos(part, 1), parts.pos(part, 2));
+  PlacedShape<T> s{math::Vector3<T>(math::load3<T>(b.pos, i) + R * offset), math::Matrix3x3<T>(R * Rk), {}};
+  for (std::size_t c = 0; c < shape_param_rows; ++c) s.p[c] = parts.shape_param(part, c);
+  return s;
+}
+
+// Whether two placed primitives' bounding spheres come within the margin.
+template <class T>
+GPUSOLVE_HD bool bounds_meet(std::uint8_t ka, const PlacedShape<T>& a, std::uint8_t kb, const PlacedShape<T>& b,
+                             T margin) {
+  const T reach = primitive_bound<T>(ka, a.p[0], a.p[1], a.p[2]) + primitive_bound<T>(kb, b.p[0], b.p[1], b.p[2]) +
+                  margin;
+  const math::Vector3<T> d(a.x - b.x);
+  return !(math::dot(d, d) >= reach * reach);  // a plane's infinite reach always meets
+}
+
+}  // namespace detail
+
+// Calls f(manifold) for each manifold of body i (a) against body j (b) that
+// has points below the margin, over the kinds of the mask M: one for two
+// primitives; for a compound, one per pair of parts whose bounds meet, parts
+// in order (a's outer, b's inner), or in the opposite order where `reverse`.
+template <ShapeMask M, class T, class View, class F>
+GPUSOLVE_HD void for_each_manifold(const View& b, std::size_t i, std::size_t j, T margin, bool reverse, F&& f) {
+  if constexpr ((M & shape_bit(compound)) == 0) {
+    (void)reverse;
+    const Manifold<T> m = collide<M, T>(b.shape[i], placed_shape<T>(b, i), b.shape[j], placed_shape<T>(b, j), margin);
+    if (m.count > 0) f(m);
+  } else {
+    const std::uint32_t na = detail::part_count(b, i), nb = detail::part_count(b, j);
+    for (std::uint32_t sa = 0; sa < na; ++sa) {
+      const std::uint32_t pa = reverse ? na - 1 - sa : sa;
+      std::uint8_t ka;
+      const PlacedShape<T> A = detail::placed_primitive<T>(b, i, pa, ka);
+      for (std::uint32_t sb = 0; sb < nb; ++sb) {
+        const std::uint32_t pb = reverse ? nb - 1 - sb : sb;
+        std::uint8_t kb;
+        const PlacedShape<T> B = detail::placed_primitive<T>(b, j, pb, kb);
+        if (na * nb > 1 && !detail::bounds_meet(ka, A, kb, B, margin)) continue;
+        Manifold<T> m = collide<M & primitives, T>(ka, A, kb, B, margin);
+        if (m.count == 0) continue;
+        for (int k = 0; k < m.count; ++k) m.points[k].feature = part_feature(m.points[k].feature, pa, pb);
+        f(m);
+      }
+    }
+  }
+}
+
+}  // namespace gpusolve::rbd

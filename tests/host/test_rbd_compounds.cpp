@@ -1,0 +1,153 @@
+// Compound bodies (pe's Union): mass properties by the parallel-axis theorem,
+// synchronisation of the parts, frames, and a
+// free compound keeping its angular momentum; a clump at rest on a plane.
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "catch_compat.hpp"
+#include "gpusolve/rbd/io/snapshot.hpp"
+#include "test_rbd_scenes.hpp"
+
+using namespace rbd_test;
+
+namespace {
+
+// A sphere part of radius r centred at `at`.
+Part<double> ball_at(double r, std::array<double, 3> at) { return {sphere, {r, 0, 0, 0}, at, {1, 0, 0, 0}}; }
+
+// The world-frame angular momentum R I R^T w of body i of a World's host records.
+std::array<double, 3> angular_momentum(const Body<double>& b) {
+  const auto R = math::to_rotation_matrix(math::Quaternion<double>(b.q[0], b.q[1], b.q[2], b.q[3]));
+  const math::Matrix3x3<double> I(b.inertia[0], b.inertia[1], b.inertia[2], b.inertia[3], b.inertia[4],
+                                  b.inertia[5], b.inertia[6], b.inertia[7], b.inertia[8]);
+  const math::Matrix3x3<double> Iw = math::rotate_tensor(R, I);
+  const math::Vector3<double> L(Iw * math::Vector3<double>(b.w[0], b.w[1], b.w[2]));
+  return {L[0], L[1], L[2]};
+}
+
+}  // namespace
+
+TEST_CASE("a compound's mass properties follow the parallel-axis theorem", "[rbd][compound]") {
+  BodySet<double> set;
+  // Two spheres of radius 0.5 at x = 1 and 3 of the compound's frame, which
+  // lies at x = 5: the centre of mass is at x = 7, the parts at -1 and +1.
+  const std::size_t i = set.add_compound({5, 0, 0}, {ball_at(0.5, {1, 0, 0}), ball_at(0.5, {3, 0, 0})}, 2.0);
+  const Body<double>& b = set[i];
+  CHECK(b.shape == compound);
+  CHECK(b.pos[0] == Approx(7.0));
+  CHECK(set.parts()[0].pos[0] == Approx(-1.0));
+  CHECK(set.parts()[1].pos[0] == Approx(1.0));
+  // Each sphere: mass 1, own inertia 2/5 m r^2 = 0.1; about the centre + m d^2 = 1.
+  CHECK(b.inertia[0] == Approx(0.2));
+  CHECK(b.inertia[4] == Approx(2.2));
+  CHECK(b.inertia[8] == Approx(2.2));
+  CHECK(b.inv_inertia_body[4] == Approx(1 / 2.2));
+  CHECK(b.shape_param[0] == 2);                 // parts
+  CHECK(b.shape_param[1] == Approx(1.5));       // bounding radius: 1 + 0.5
+  CHECK(b.shape_param[2] == Approx(0.5));       // feature size
+  CHECK(b.inv_mass == Approx(0.5));
+
+  // One box turned 90 degrees about z: the box's inertia with x and y swapped.
+  const double s = std::sqrt(0.5);
+  const std::size_t k =
+      set.add_compound({0, 0, 0}, {Part<double>{box, {1.0, 0.5, 0.25, 0}, {0, 0, 0}, {s, 0, 0, s}}}, 3.0);
+  const auto own = solid_box<double>({1.0, 0.5, 0.25}, 3.0).inertia;
+  CHECK(set[k].inertia[0] == Approx(own[1]));
+  CHECK(set[k].inertia[4] == Approx(own[0]));
+  CHECK(set[k].inertia[8] == Approx(own[2]));
+  CHECK(std::abs(set[k].inertia[1]) < 1e-12);
+
+  // A sphere and a box share the mass by volume; off-centre parts give
+  // products of inertia: here the full tensor against the sum by hand.
+  const std::vector<Part<double>> mixed = {ball_at(1.0, {0, 0, 0}), Part<double>{box, {0.5, 0.5, 0.5, 0}, {1.5, 1.0, 0}, {1, 0, 0, 0}}};
+  const auto c = solid_compound(mixed, 10.0);
+  const double vs = 4 * pi / 3, vb = 1.0, ms = 10 * vs / (vs + vb), mb = 10 - ms;
+  CHECK(c.volume == Approx(vs + vb));
+  CHECK(c.centre[0] == Approx(mb * 1.5 / 10));
+  CHECK(c.centre[1] == Approx(mb * 1.0 / 10));
+  const double ds[2] = {-c.centre[0], -c.centre[1]}, db[2] = {1.5 - c.centre[0], 1.0 - c.centre[1]};
+  const double Is = 0.4 * ms, Ib = mb * 0.5 / 3;  // own inertias about each axis
+  CHECK(c.inertia[0] == Approx(Is + Ib + ms * ds[1] * ds[1] + mb * db[1] * db[1]));
+  CHECK(c.inertia[1] == Approx(-ms * ds[0] * ds[1] - mb * db[0] * db[1]));
+  CHECK(c.inertia[8] == Approx(Is + Ib + ms * (ds[0] * ds[0] + ds[1] * ds[1]) + mb * (db[0] * db[0] + db[1] * db[1])));
+  CHECK(c.inertia[3] == Approx(c.inertia[1]));
+}
+
+TEST_CASE("the BodyManager copies the parts of compounds added after the first sync", "[rbd][compound]") {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  set.add_sphere({0, 0, 1}, 0.5, 1);
+  BodyManager<device::cpu, double> m(set);
+  m.syncDevice();
+  CHECK(m.device().shapes == spheres_and_planes);
+  const std::size_t i = set.add_compound({3, 0, 1}, hammer<double>(), 1.0, {std::sqrt(0.5), 0, 0, std::sqrt(0.5)});
+  m.bodyAdded(i);
+  m.syncDevice();
+  auto& d = m.device();
+  CHECK(d.shapes == (spheres_and_planes | shape_bit(box) | shape_bit(capsule) | shape_bit(compound)));
+  REQUIRE(d.parts.size() == 2);
+  // Part 1 (the head) placed in the world: the body turned 90 degrees about z.
+  std::uint8_t kind = 0;
+  const auto head = rbd::detail::placed_primitive<double>(d.view(), i, 1, kind);
+  CHECK(kind == box);
+  const auto& part = set.parts()[1];
+  CHECK(head.x[0] == Approx(set[i].pos[0] - part.pos[1]));
+  CHECK(head.x[1] == Approx(set[i].pos[1] + part.pos[0]));
+  CHECK(head.x[2] == Approx(set[i].pos[2] + part.pos[2]));
+  CHECK(d.radius(i) == Approx(set[i].shape_param[1]));
+}
+
+TEST_CASE("a compound is drawn as its parts", "[rbd][compound][io]") {
+  BodySet<double> set;
+  set.add_compound({0, 0, 2}, hammer<double>(), 1.0);
+  const io::Frame f = io::snapshot(set, 0, 0.0);
+  REQUIRE(f.boxes.size() == 1);
+  REQUIRE(f.capsules.size() == 1);
+  CHECK(f.boxes[0].moving);
+  // Parts at their places in the hammer's frame, which lies at (0, 0, 2).
+  CHECK(f.boxes[0].center[0] == Approx(0.3));
+  CHECK(f.capsules[0].center[0] == Approx(-0.1));
+  CHECK(f.capsules[0].center[2] == Approx(2.0));
+  CHECK(f.boxes[0].R[5] == Approx(-std::sin(0.2)).margin(1e-6));  // the head's own turn about x
+}
+
+TEST_CASE("a free compound spinning in space keeps its angular momentum", "[rbd][compound][rbd_physics]") {
+  BodySet<double> set;
+  const std::size_t i = set.add_compound({0, 0, 0}, hammer<double>(), 2.0);
+  set[i].w = {1.0, 2.0, 3.0};
+  set[i].v = {0.5, 0, 0};
+  SolverSettings<double> s;
+  s.gravity[2] = 0;
+  s.dt = 0.001;
+  const double x0 = set[i].pos[0];
+  World<device::cpu, double> w(set, s);
+  const auto L0 = angular_momentum(set[i]);
+  const double norm0 = std::sqrt(L0[0] * L0[0] + L0[1] * L0[1] + L0[2] * L0[2]);
+  double worst = 0;
+  for (int step = 0; step < 2000; ++step) {
+    w.step();
+    if (step % 100 != 99) continue;
+    w.syncHost();
+    const auto L = angular_momentum(set[i]);
+    const double d = std::sqrt((L[0] - L0[0]) * (L[0] - L0[0]) + (L[1] - L0[1]) * (L[1] - L0[1]) +
+                               (L[2] - L0[2]) * (L[2] - L0[2]));
+    worst = std::max(worst, d / norm0);
+  }
+  INFO("largest change of the angular momentum over 2 s: " << worst << " of its size");
+  CHECK(worst < 0.01);
+  CHECK(set[i].pos[0] == Approx(x0 + 0.5 * 2.0));  // the centre of mass moves on at v
+}
+
+TEST_CASE("a clump resting on a plane has a contact per sphere and stays put", "[rbd][compound][rbd_physics]") {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  const std::size_t i = set.add_compound({0, 0, 0.22}, clump<double>(), 1.0);
+  const auto start = set[i].pos;
+  SolverSettings<double> s;
+  s.dt = 0.002, s.margin = 0.02, s.tolerance = 1e-9, s.max_iterations = 400;
+  World<device::cpu, double> w(set, s);
+  for (int step = 0; step < 500; ++step) REQUIRE(w.step().solver.contacts == 3);
+  w.syncHost();
+  for (int c = 0; c < 3; ++c) CHECK(std::abs(set[i].pos[c] - start[c]) < 1e-3 * 0.22);
+}
