@@ -60,11 +60,44 @@ TEST_CASE("the README's World example runs on the CPU backend", "[rbd_settings]"
     set.add_sphere({2.1f * (i % 4), 2.1f * (i / 4 % 4), 1.1f + 2.1f * (i / 16)}, 1.0f, 1.0f);
   SolverSettings<float> settings;
   settings.friction = 0.5f;
-  World<device::cpu> world(set, settings);
+  SphereWorld<device::cpu> world(set, settings);
   for (int k = 0; k < 400; ++k) world.advance();  // 1 s: both layers have landed
   const StepStats<float> s = world.latest_stats();
   CHECK(s.solver.contacts >= 32);  // every sphere rests on the floor or on another
   CHECK(s.max_penetration < 0.01f);
   world.syncHost();
   for (std::size_t i = 1; i < set.size(); ++i) CHECK(set[i].pos[2] > 0.98f);
+}
+
+TEST_CASE("a SphereWorld steps spheres as World does and refuses a box by name", "[rbd_settings]") {
+  BodySet<float> set;
+  set.add_plane({0, 0, 1}, 0);
+  for (int i = 0; i < 32; ++i)
+    set.add_sphere({2.1f * (i % 4) + 0.01f * i, 2.1f * (i / 4 % 4), 1.1f + 2.1f * (i / 16)}, 1.0f, 1.0f);
+  BodySet<float> copy = set;
+  SolverSettings<float> settings;
+  settings.friction = 0.5f;
+  World<device::cpu> all(set, settings);
+  SphereWorld<device::cpu> spheres(copy, settings);
+  all.advance(300);
+  spheres.advance(300);
+  CHECK(all.latest_stats().solver.contacts == spheres.latest_stats().solver.contacts);
+  all.syncHost();
+  spheres.syncHost();
+  for (std::size_t i = 0; i < set.size(); ++i)
+    for (int c = 0; c < 3; ++c) CHECK(set[i].pos[c] == copy[i].pos[c]);  // the same kernels: bit for bit
+
+  copy.add_box({0, 0, 9}, {0.5f, 0.5f, 0.5f}, 1.0f);
+  const std::size_t box = copy.size() - 1;
+  spheres.manager().bodyAdded(box);
+  try {
+    spheres.manager().syncDevice();
+    FAIL("a box was accepted by a SphereWorld");
+  } catch (const InvalidBodyError& e) {
+    CHECK(e.body() == box);
+    CHECK(e.field() == "shape");
+  }
+  BodySet<float> boxes;
+  boxes.add_box({0, 0, 1}, {0.5f, 0.5f, 0.5f}, 1.0f);
+  CHECK_THROWS_AS(SphereWorld<device::cpu>(boxes, settings), InvalidBodyError);
 }

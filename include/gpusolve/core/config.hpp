@@ -40,6 +40,16 @@
 #define GPUSOLVE_HAS_CUDART 0
 #endif
 
+// Put before a large GPUSOLVE_HD function that several kernels or call sites
+// share: on the device it stays one called function rather than a copy
+// inlined at each site, which keeps kernels and their compile time small
+// (docs/build_time.md); host compilers decide for themselves.
+#if defined(__CUDACC__)
+#define GPUSOLVE_HD_NOINLINE __host__ __device__ __noinline__
+#else
+#define GPUSOLVE_HD_NOINLINE
+#endif
+
 // True only while compiling device code.
 #if defined(__CUDA_ARCH__)
 #define GPUSOLVE_DEVICE_CODE 1

@@ -56,7 +56,10 @@ struct StepEnd {
 // statistics' scalars. Model: a contact model (contact_models/); Method: a
 // solver's tag (solvers/solver.hpp: Jacobi<Strategy>, ColouredGaussSeidel, ...).
 // The defaults, APGD with the per-body gather and the isotropic cone, are the
-// atlas's best at equal penetration (docs/tuning/solve.md).
+// atlas's best at equal penetration (docs/tuning/solve.md). Shapes: the shape
+// kinds the World compiles in (shapes.hpp); a program of spheres and planes
+// compiles in half the time with spheres_and_planes (SphereWorld, below;
+// docs/build_time.md), and a body of another kind is refused by name.
 //
 // A step is five stages, queued in this order (queue_step):
 //   detect       contacts from the bodies' bounds and shapes (collision/)
@@ -64,7 +67,8 @@ struct StepEnd {
 //   warm start   each persisting contact starts from a share of its last impulse
 //   solve        the Solver concept (solvers/): constrained velocities and impulses
 //   end of step  integrate, remember the impulses, write the figures: one pass
-template <class Device, class T = float, class Model = ConeFriction, class Method = AcceleratedJacobi<Gather>>
+template <class Device, class T = float, class Model = ConeFriction, class Method = AcceleratedJacobi<Gather>,
+          ShapeMask Shapes = all_shapes>
 class World {
  public:
   using solver_type = solver_t<Method, Device, T, Model>;
@@ -72,7 +76,7 @@ class World {
                 "World: Method::solver must model the Solver concept (gpusolve/rbd/solvers/solver.hpp)");
 
   World(BodySet<T>& set, const SolverSettings<T>& settings, stream_t stream = stream_t{})
-      : manager_(set), stream_(stream) {
+      : manager_(set, default_rebuild_threshold, Shapes), stream_(stream) {
     set_settings(settings);
     manager_.syncDeviceFull(stream_);
   }
@@ -346,7 +350,7 @@ class World {
   BodyManager<Device, T> manager_;
   stream_t stream_;
   SolverSettings<T> settings_;
-  CollisionDetection<Device, T> detection_;
+  CollisionDetection<Device, T, Shapes> detection_;
   Contacts<Device, T, Model> contacts_;
   solver_type solver_;
   WarmStart<Device, T, Model> warm_;  // the previous step's impulses (settings.warm_start)
@@ -357,5 +361,10 @@ class World {
   bool timing_ = false;
   UnattendedSteps<Device> unattended_;
 };
+
+// A World of spheres and planes only: the sphere path of detection alone is
+// compiled in.
+template <class Device, class T = float, class Model = ConeFriction, class Method = AcceleratedJacobi<Gather>>
+using SphereWorld = World<Device, T, Model, Method, spheres_and_planes>;
 
 }  // namespace gpusolve::rbd

@@ -25,6 +25,8 @@ struct SyncReport {
   bool rebuilt = false;       // removed bodies were compacted away (indices changed)
 };
 
+inline constexpr std::size_t default_rebuild_threshold = 256;
+
 // For users whose engine keeps its bodies on the host, in a BodySet. Changes
 // announced by bodyAdded/bodyRemoved are applied lazily, at the next sync.
 // Removed bodies are only marked status = removed until `rebuild_threshold` of
@@ -32,11 +34,14 @@ struct SyncReport {
 // keeping their order) and everything is copied again. Bodies in front of the
 // first added one keep their shape and mass data on the device.
 // Device may be device::cpu, which makes the device copy a second host copy.
+// `compiled`: the shape kinds its user was compiled for (World's Shapes); a
+// body of another kind (or a compound with such a part) is refused at sync.
 template <class Device, class T = float>
 class BodyManager {
  public:
-  explicit BodyManager(BodySet<T>& host, std::size_t rebuild_threshold = 256)
-      : host_(host), threshold_(rebuild_threshold > 0 ? rebuild_threshold : 1) {}
+  explicit BodyManager(BodySet<T>& host, std::size_t rebuild_threshold = default_rebuild_threshold,
+                       ShapeMask compiled = all_shapes)
+      : host_(host), threshold_(rebuild_threshold > 0 ? rebuild_threshold : 1), compiled_(compiled) {}
 
   // Body `index` of the BodySet is new (or was replaced): copy all of it next sync.
   void bodyAdded(std::size_t index) { added_.push_back(index); }
@@ -67,6 +72,23 @@ class BodyManager {
   std::size_t removed_count() const { return removed_count_; }
 
  private:
+  // The kinds of body i (a compound's parts' too); throws InvalidBodyError
+  // naming the body where one is not among the kinds compiled in.
+  ShapeMask require_compiled(std::size_t i) const {
+    const Body<T>& b = host_.records()[i];
+    ShapeMask kinds = shape_bit(b.shape);
+    if (b.shape == compound)
+      for (std::size_t k = 0; k < std::size_t(b.shape_param[0]); ++k)
+        kinds |= shape_bit(host_.parts()[b.first_part + k].shape);
+    if (kinds & ~compiled_) {
+      std::ostringstream os;
+      os << "its shape kinds (mask " << kinds << ") are not all among those this World was compiled for (mask "
+         << compiled_ << "); give World the Shapes it needs (all_shapes holds every kind)";
+      throw InvalidBodyError(i, "shape", os.str());
+    }
+    return kinds;
+  }
+
   SyncReport sync(bool full, stream_t stream) {
     auto& recs = host_.records();
     SyncReport rep;
@@ -91,10 +113,8 @@ class BodyManager {
     for (std::size_t i = 0; i < n; ++i)
       if (recs[i].status != removed) {
         host_.validate(i);
-        shapes |= shape_bit(recs[i].shape);
+        shapes |= require_compiled(i);
       }
-    if (shapes & shape_bit(compound))
-      for (const Part<T>& part : host_.parts()) shapes |= shape_bit(part.shape);
     // Growth reallocates (contents lost), so double to keep appends amortised.
     if (n > device_.capacity()) {
       const std::size_t cap = std::max(n, 2 * device_.capacity());
@@ -199,6 +219,7 @@ class BodyManager {
 
   BodySet<T>& host_;
   std::size_t threshold_;
+  ShapeMask compiled_;
   std::size_t removed_count_ = 0;
   std::vector<std::size_t> added_, removed_;
   Bodies<device::cpu, T> staging_;

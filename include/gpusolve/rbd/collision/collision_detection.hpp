@@ -352,10 +352,11 @@ struct DetectionKey {
 // is made wherever two surfaces are closer than `margin` (not only where they
 // touch), so the solver can stop bodies before they meet. A pair of shapes
 // gives up to max_manifold_points contacts; contacts come sorted by (a, b)
-// on every backend, a pair's points in their manifold's order. Where the
-// bodies hold spheres and planes only (Bodies::shapes), no other shape pair
-// is compiled into the kernels that run. Scratch storage is kept between steps.
-template <class Device, class T = float>
+// on every backend, a pair's points in their manifold's order. Shapes: the
+// kinds compiled in (a sphere-only program need not compile box pairs);
+// where the bodies hold spheres and planes only (Bodies::shapes), no other
+// shape pair runs. Scratch storage is kept between steps.
+template <class Device, class T = float, ShapeMask Shapes = all_shapes>
 class CollisionDetection {
  public:
   using View = typename Bodies<Device, T>::View;
@@ -458,10 +459,12 @@ class CollisionDetection {
   template <class CView>
   void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, T mu, std::uint32_t* hold,
                       stream_t stream) {
-    if ((bodies.shapes & ~spheres_and_planes) == 0)
-      queue_contacts<spheres_and_planes>(bodies, c, margin, mu, hold, stream);
-    else
-      queue_contacts<all_shapes>(bodies, c, margin, mu, hold, stream);
+    if ((bodies.shapes & ~Shapes) != 0)
+      throw InvalidArgumentError("gpusolve: CollisionDetection: the bodies hold shape kinds that were not compiled in "
+                                 "(its Shapes)");
+    if constexpr ((Shapes & ~spheres_and_planes) != 0)
+      if ((bodies.shapes & ~spheres_and_planes) != 0) return queue_contacts<Shapes>(bodies, c, margin, mu, hold, stream);
+    queue_contacts<spheres_and_planes>(bodies, c, margin, mu, hold, stream);
   }
 
   template <ShapeMask M, class CView>

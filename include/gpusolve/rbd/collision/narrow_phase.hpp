@@ -78,9 +78,10 @@ GPUSOLVE_HD Manifold<T> collide_with(const PlacedShape<T>& a, std::uint8_t kb, c
 }  // namespace detail
 
 // The manifold of body a (kind ka) against body b (kind kb), with the kinds a
-// scene holds in M; a kind outside M gives no points.
+// scene holds in M; a kind outside M gives no points. Not inlined on the
+// device: the contact count and the contact write share one copy per M.
 template <ShapeMask M = all_shapes, class T>
-GPUSOLVE_HD Manifold<T> collide(std::uint8_t ka, const PlacedShape<T>& a, std::uint8_t kb, const PlacedShape<T>& b,
+GPUSOLVE_HD_NOINLINE Manifold<T> collide(std::uint8_t ka, const PlacedShape<T>& a, std::uint8_t kb, const PlacedShape<T>& b,
                                 T margin) {
   const auto with = [&](auto kind) -> Manifold<T> {
     constexpr ShapeKind A = decltype(kind)::value;
