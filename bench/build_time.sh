@@ -1,30 +1,44 @@
 #!/usr/bin/env bash
-# Build times (docs/build_time.md): the README's World program
-# (examples/readme/readme_world.cu) compiled by nvcc as one translation unit,
-# `runs` times, with nvcc's time per phase; then, with --suite, configure plus
-# build of the GPU suite and the atlas and step benches (the `gpu` preset) in
-# a fresh build folder with `jobs` parallel jobs.
+# Build times (docs/build_time.md). The README's World program
+# (examples/readme/readme_world.cu) compiled as one translation unit, `runs`
+# times each way: by nvcc from the headers alone; by nvcc and by g++ against
+# the prebuilt Worlds (gpusolve::worlds, prebuilt_worlds.hpp), whose own
+# one-time compile is timed too. nvcc's time per phase of the last run of
+# each nvcc way. With --suite: configure plus build of the GPU suite and the
+# atlas and step benches in a fresh build folder with `jobs` parallel jobs.
 # Usage: bench/build_time.sh OUT_DIR [runs=3] [jobs=nproc] [--suite]
-# Writes OUT_DIR/readme_runs.csv (seconds per run), readme_phases.csv (nvcc
-# --time of the last run) and, with --suite, suite.txt.
+# Writes OUT_DIR/build_times.csv (way,run,seconds,cores), phases_*.csv and,
+# with --suite, suite.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="$1" runs="${2:-3}" jobs="${3:-$(nproc)}" suite="${4:-}"
 mkdir -p "$out"
 secs() { printf "%d.%01d" $((($2 - $1) / 1000000000)) $((($2 - $1) / 100000000 % 10)); }  # from two date +%s%N
 [ -x /usr/local/cuda/bin/nvcc ] && export PATH="/usr/local/cuda/bin:$PATH"
-flags=(-std=c++17 -O3 -DNDEBUG --extended-lambda --expt-relaxed-constexpr -arch=sm_90 -Iinclude)
-echo "run,seconds,cores" > "$out/readme_runs.csv"
+cuda_inc="$(dirname "$(dirname "$(command -v nvcc)")")/include"
+nvcc_flags=(-std=c++17 -O3 -DNDEBUG --extended-lambda --expt-relaxed-constexpr -arch=sm_90 -Iinclude)
+gxx_flags=(-std=c++17 -O3 -DNDEBUG -Iinclude -I"$cuda_inc" -I"$cuda_inc/cccl")
+prebuilt=(-DGPUSOLVE_PREBUILT_WORLDS -DGPUSOLVE_PREBUILT_GPU_WORLDS)
+tmp=$(mktemp -d)
+cp examples/readme/readme_world.cu "$tmp/readme_world.cpp"
+echo "way,run,seconds,cores" > "$out/build_times.csv"
+timed() {  # way run command...
+  local way="$1" run="$2"; shift 2
+  local start end; start=$(date +%s%N); "$@"; end=$(date +%s%N)
+  echo "$way,$run,$(secs "$start" "$end"),$(nproc)" >> "$out/build_times.csv"
+}
 for r in $(seq 1 "$runs"); do
-  rm -f "$out/readme_phases.csv"
-  start=$(date +%s%N)
-  nvcc "${flags[@]}" --time "$out/readme_phases.csv" -c examples/readme/readme_world.cu -o "$out/readme_world.o"
-  end=$(date +%s%N)
-  echo "$r,$(secs "$start" "$end"),$(nproc)" >> "$out/readme_runs.csv"
+  timed nvcc_headers "$r" nvcc "${nvcc_flags[@]}" --time "$out/phases_nvcc_headers.csv" -c examples/readme/readme_world.cu -o "$tmp/a.o"
+  timed nvcc_prebuilt "$r" nvcc "${nvcc_flags[@]}" "${prebuilt[@]}" --time "$out/phases_nvcc_prebuilt.csv" -c examples/readme/readme_world.cu -o "$tmp/b.o"
+  timed gxx_prebuilt "$r" g++ "${gxx_flags[@]}" "${prebuilt[@]}" -c "$tmp/readme_world.cpp" -o "$tmp/c.o"
 done
-rm -f "$out/readme_world.o"
-echo "README program, seconds per run on $(nproc) cores:"; tail -n +2 "$out/readme_runs.csv" | cut -d, -f2 | sort -n | tr '\n' ' '; echo
-cut -d, -f2,7 "$out/readme_phases.csv"
+timed library_gpu 1 nvcc "${nvcc_flags[@]}" -c src/worlds_gpu.cu -o "$tmp/worlds_gpu.o"
+timed library_cpu 1 g++ "${gxx_flags[@]}" -fopenmp -c src/worlds_cpu.cpp -o "$tmp/worlds_cpu.o"
+rm -rf "$tmp"
+echo "seconds on $(nproc) cores (way: runs):"
+for way in nvcc_headers nvcc_prebuilt gxx_prebuilt library_gpu library_cpu; do
+  echo "  $way: $(grep "^$way," "$out/build_times.csv" | cut -d, -f3 | sort -n | tr '\n' ' ')"
+done
 if [ "$suite" = --suite ]; then
   dir=$(mktemp -d)
   start=$(date +%s%N)

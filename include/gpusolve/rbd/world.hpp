@@ -75,25 +75,14 @@ class World {
   static_assert(is_solver<solver_type, Device, T, Model>::value,
                 "World: Method::solver must model the Solver concept (gpusolve/rbd/solvers/solver.hpp)");
 
-  World(BodySet<T>& set, const SolverSettings<T>& settings, stream_t stream = stream_t{})
-      : manager_(set, default_rebuild_threshold, Shapes), stream_(stream) {
-    set_settings(settings);
-    manager_.syncDeviceFull(stream_);
-  }
+  World(BodySet<T>& set, const SolverSettings<T>& settings, stream_t stream = stream_t{});
 
   // Throws InvalidArgumentError naming the field before anything changes.
-  void set_settings(const SolverSettings<T>& s) {
-    s.validate();
-    finish();
-    settings_ = s;
-  }
+  void set_settings(const SolverSettings<T>& s);
   const SolverSettings<T>& settings() const { return settings_; }
 
   // Runs one step and returns its statistics (waits for them).
-  StepStats<T> step() {
-    advance(1);
-    return latest_stats();
-  }
+  StepStats<T> step();
 
   // Queues `steps` steps. The host waits only where the step's sizes need it
   // (the contact count after detection) and, on the solver's launched path or
@@ -102,10 +91,7 @@ class World {
   // the step's statistics. Throws NonFiniteStateError naming
   // the body and the step when a body's state holds a NaN or infinity: that
   // step is not taken and no body changes.
-  void advance(std::size_t steps = 1) {
-    finish();
-    for (std::size_t k = 0; k < steps; ++k) queue_step(nullptr);
-  }
+  void advance(std::size_t steps = 1);
 
   // Queues `steps` steps with no host wait at all, where the method allows it
   // (solves_unattended: the Jacobi family, whose update cache still reads its
@@ -121,45 +107,16 @@ class World {
   // contacts and queues the held steps again, or throws NonFiniteStateError
   // naming the body and the step (the bodies as they were before that step;
   // the steps after it are not taken).
-  void advance_unattended(std::size_t steps = 1) {
-    if constexpr (!solves_unattended<solver_type>::value || integrates<solver_type>::value) {
-      advance(steps);
-    } else {
-      if (settings_.throw_on_divergence) return advance(steps);  // the host waits for each verdict
-      if (steps_ == 0 && steps > 0) {  // the host counts the first step's contacts: it sizes the solver's grid
-        queue_step(nullptr);
-        --steps;
-      }
-      unattended_.begin(steps_, stream_);
-      for (std::size_t k = 0; k < steps; ++k) queue_step(unattended_.hold());
-    }
-  }
+  void advance_unattended(std::size_t steps = 1);
 
   // Waits for the steps advance_unattended() queued and settles them (see there).
-  void finish() {
-    while (unattended_.pending()) {
-      const std::optional<std::size_t> held = unattended_.settle(stream_);
-      const auto summary = detection_.summary(stream_);
-      contacts_.count_on_device(nullptr);
-      if (!held) {
-        contacts_.resize(summary.contacts);
-        return;
-      }
-      queue_again_from(*held, summary);
-    }
-  }
+  void finish();
 
   // Statistics of the last step queued; waits until the backend finished it.
-  StepStats<T> latest_stats() {
-    finish();
-    return steps_ == 0 ? StepStats<T>{} : stats_of(current_);
-  }
+  StepStats<T> latest_stats();
   // Statistics of the step before it: ready without a wait once a later step
   // was queued by advance() (its detection waited for the device). Zero before two steps.
-  StepStats<T> previous_stats() {
-    finish();
-    return steps_ < 2 ? StepStats<T>{} : stats_of(1 - current_);
-  }
+  StepStats<T> previous_stats();
   std::size_t steps_queued() const { return steps_; }
   // Steps advance_unattended() queued again after they were held for a
   // contact list too small, as of the last finish() (each costs a step's
@@ -171,23 +128,11 @@ class World {
   void set_phase_timing(bool on) { timing_ = on; }
 
   // Copies positions, orientations and velocities back into the BodySet.
-  void syncHost() {
-    finish();
-    manager_.syncHost(stream_);
-  }
+  void syncHost();
 
-  Bodies<Device, T>& bodies() {
-    finish();
-    return manager_.device();
-  }
-  Contacts<Device, T, Model>& contacts() {
-    finish();
-    return contacts_;
-  }
-  BodyManager<Device, T>& manager() {
-    finish();
-    return manager_;
-  }
+  Bodies<Device, T>& bodies();
+  Contacts<Device, T, Model>& contacts();
+  BodyManager<Device, T>& manager();
 
  private:
   // The points of a step that its marks record.
@@ -361,6 +306,100 @@ class World {
   bool timing_ = false;
   UnattendedSteps<Device> unattended_;
 };
+
+// The members a program calls, defined outside the class: an explicit
+// instantiation declaration (prebuilt_worlds.hpp) then leaves them, and the
+// kernels they launch, to the prebuilt library (docs/build_time.md).
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+World<Device, T, Model, Method, Shapes>::World(BodySet<T>& set, const SolverSettings<T>& settings, stream_t stream)
+    : manager_(set, default_rebuild_threshold, Shapes), stream_(stream) {
+  set_settings(settings);
+  manager_.syncDeviceFull(stream_);
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+void World<Device, T, Model, Method, Shapes>::set_settings(const SolverSettings<T>& s) {
+  s.validate();
+  finish();
+  settings_ = s;
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+StepStats<T> World<Device, T, Model, Method, Shapes>::step() {
+  advance(1);
+  return latest_stats();
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+void World<Device, T, Model, Method, Shapes>::advance(std::size_t steps) {
+  finish();
+  for (std::size_t k = 0; k < steps; ++k) queue_step(nullptr);
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+void World<Device, T, Model, Method, Shapes>::advance_unattended(std::size_t steps) {
+  if constexpr (!solves_unattended<solver_type>::value || integrates<solver_type>::value) {
+    advance(steps);
+  } else {
+    if (settings_.throw_on_divergence) return advance(steps);  // the host waits for each verdict
+    if (steps_ == 0 && steps > 0) {  // the host counts the first step's contacts: it sizes the solver's grid
+      queue_step(nullptr);
+      --steps;
+    }
+    unattended_.begin(steps_, stream_);
+    for (std::size_t k = 0; k < steps; ++k) queue_step(unattended_.hold());
+  }
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+void World<Device, T, Model, Method, Shapes>::finish() {
+  while (unattended_.pending()) {
+    const std::optional<std::size_t> held = unattended_.settle(stream_);
+    const auto summary = detection_.summary(stream_);
+    contacts_.count_on_device(nullptr);
+    if (!held) {
+      contacts_.resize(summary.contacts);
+      return;
+    }
+    queue_again_from(*held, summary);
+  }
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+StepStats<T> World<Device, T, Model, Method, Shapes>::latest_stats() {
+  finish();
+  return steps_ == 0 ? StepStats<T>{} : stats_of(current_);
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+StepStats<T> World<Device, T, Model, Method, Shapes>::previous_stats() {
+  finish();
+  return steps_ < 2 ? StepStats<T>{} : stats_of(1 - current_);
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+void World<Device, T, Model, Method, Shapes>::syncHost() {
+  finish();
+  manager_.syncHost(stream_);
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+Bodies<Device, T>& World<Device, T, Model, Method, Shapes>::bodies() {
+  finish();
+  return manager_.device();
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+Contacts<Device, T, Model>& World<Device, T, Model, Method, Shapes>::contacts() {
+  finish();
+  return contacts_;
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+BodyManager<Device, T>& World<Device, T, Model, Method, Shapes>::manager() {
+  finish();
+  return manager_;
+}
 
 // A World of spheres and planes only: the sphere path of detection alone is
 // compiled in.
