@@ -43,7 +43,7 @@ if [ "$suite" = --suite ]; then
   dir=$(mktemp -d)
   start=$(date +%s%N)
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CUDA_ARCHITECTURES=90 \
-    -DGPUSOLVE_BUILD_EXAMPLES=OFF ${GPUSOLVE_CATCH2_INCLUDE_DIR:+-DGPUSOLVE_CATCH2_INCLUDE_DIR=$GPUSOLVE_CATCH2_INCLUDE_DIR} > "$out/suite_configure.log"
+    ${GPUSOLVE_CATCH2_INCLUDE_DIR:+-DGPUSOLVE_CATCH2_INCLUDE_DIR=$GPUSOLVE_CATCH2_INCLUDE_DIR} > "$out/suite_configure.log"
   mid=$(date +%s%N)
   cmake --build "$dir" -j "$jobs" --target gpusolve_gpu_tests gpusolve_bench_atlas gpusolve_bench_step > "$out/suite_build.log"
   end=$(date +%s%N)
