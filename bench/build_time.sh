@@ -3,8 +3,8 @@
 # (examples/readme/readme_world.cu) compiled as one translation unit, `runs`
 # times each way: by nvcc from the headers alone; by nvcc and by g++ against
 # the prebuilt Worlds (gpusolve::worlds, prebuilt_worlds.hpp), whose own
-# one-time compile is timed too. nvcc's time per phase of the last run of
-# each nvcc way. With --suite: configure plus build of the GPU suite and the
+# one-time compile is timed too, with nvcc's time per phase of every run
+# (phases_*.csv, appended run after run). With --suite: configure plus build of the GPU suite and the
 # atlas and step benches in a fresh build folder with `jobs` parallel jobs.
 # Usage: bench/build_time.sh OUT_DIR [runs=3] [jobs=nproc] [--suite]
 # Writes OUT_DIR/build_times.csv (way,run,seconds,cores), phases_*.csv and,
