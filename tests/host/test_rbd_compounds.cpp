@@ -135,7 +135,7 @@ TEST_CASE("a free compound spinning in space keeps its angular momentum", "[rbd]
     worst = std::max(worst, d / norm0);
   }
   INFO("largest change of the angular momentum over 2 s: " << worst << " of its size");
-  CHECK(worst < 0.01);
+  CHECK(worst < 1e-10);  // Move turns L with the body (integrate.hpp)
   CHECK(set[i].pos[0] == Approx(x0 + 0.5 * 2.0));  // the centre of mass moves on at v
 }
 

@@ -112,7 +112,7 @@ TEST_CASE("a sphere on an incline rolls at 5/7 g sin(theta) or slides at g (sin 
   CHECK(incline_acceleration(theta, 0.0) == Approx(g * std::sin(theta)).epsilon(0.03));
 }
 
-TEST_CASE("a body spinning freely in a World keeps its angular momentum (gyroscopic term)", "[rbd_physics]") {
+TEST_CASE("a body spinning freely in a World keeps its angular momentum (the turn keeps L)", "[rbd_physics]") {
   BodySet<double> set;
   set.add_sphere({0, 0, 0}, 1.0, 1.0, {1.0, 2.0, 3.5});
   set[0].w = {0.2, 0.3, 3.0};
@@ -131,8 +131,79 @@ TEST_CASE("a body spinning freely in a World keeps its angular momentum (gyrosco
   const math::Vector3<double> w0(set[0].w[0], set[0].w[1], set[0].w[2]);
   for (int i = 0; i < 2000; ++i) REQUIRE(w.step().solver.contacts == 0);
   const math::Vector3<double> L = momentum();
-  CHECK(math::norm(math::Vector3<double>(L - L0)) < 5e-3 * math::norm(L0));
+  CHECK(math::norm(math::Vector3<double>(L - L0)) < 1e-10 * math::norm(L0));
   w.syncHost();
   const math::Vector3<double> w1(set[0].w[0], set[0].w[1], set[0].w[2]);
   CHECK(math::norm(math::Vector3<double>(w1 - w0)) > 0.05);  // it precesses
+}
+
+// |L(t) - L(0)| / |L(0)| at its largest over 2 s at the default dt, in float,
+// for a body spun about an axis that is not principal. Move keeps L exactly
+// (1e-13 in double, test above); in float the stored state's rounding leaves
+// 1.9e-4 to 2.6e-4 (docs/shapes.md), against 0.25% to 1.6% of the explicit
+// gyroscopic term it replaced.
+namespace {
+template <class T>
+double largest_momentum_change(BodySet<T>& set, std::size_t i) {
+  SolverSettings<T> s;
+  s.gravity[2] = 0;
+  World<device::cpu, T> world(set, s);
+  const auto momentum = [&set, i] {
+    const Body<T>& b = set[i];
+    const auto R = math::to_rotation_matrix(math::Quaternion<double>(b.q[0], b.q[1], b.q[2], b.q[3]));
+    const math::Matrix3x3<double> I(b.inertia[0], b.inertia[1], b.inertia[2], b.inertia[3], b.inertia[4],
+                                    b.inertia[5], b.inertia[6], b.inertia[7], b.inertia[8]);
+    return math::Vector3<double>(math::rotate_tensor(R, I) * math::Vector3<double>(b.w[0], b.w[1], b.w[2]));
+  };
+  const math::Vector3<double> L0 = momentum();
+  const math::Vector3<double> w0(set[i].w[0], set[i].w[1], set[i].w[2]);
+  double worst = 0;
+  for (int k = 0; k < 800; ++k) {
+    world.advance();
+    if (k % 20 != 19) continue;
+    world.syncHost();
+    const math::Vector3<double> L = momentum();
+    worst = std::max(worst, math::norm(math::Vector3<double>(L - L0)) / math::norm(L0));
+  }
+  const math::Vector3<double> w1(set[i].w[0], set[i].w[1], set[i].w[2]);
+  CHECK(math::norm(math::Vector3<double>(w1 - w0)) > 0.05 * math::norm(w0));  // it tumbles: w itself moves
+  return worst;
+}
+}  // namespace
+
+TEST_CASE("a free box, capsule and asymmetric body keep L to 5e-4 over 2 s in float", "[rbd_physics]") {
+  const std::array<float, 3> w{3.0f, -2.0f, 1.5f};  // about no principal axis
+  const std::array<float, 4> q{0.9f, 0.3f, -0.2f, 0.245f};
+  const float n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  const std::array<float, 4> turned{q[0] / n, q[1] / n, q[2] / n, q[3] / n};
+  SECTION("a box 1 x 0.6 x 0.2") {
+    BodySet<float> set;
+    const std::size_t i = set.add_box({0, 0, 0}, {0.5f, 0.3f, 0.1f}, 1.0f, turned);
+    set[i].w = w;
+    const double worst = largest_momentum_change(set, i);
+    INFO("largest change of L: " << worst);
+    CHECK(worst < 5e-4);
+  }
+  SECTION("a capsule") {
+    BodySet<float> set;
+    const std::size_t i = set.add_capsule({0, 0, 0}, 0.2f, 0.8f, 1.0f, turned);
+    set[i].w = w;
+    const double worst = largest_momentum_change(set, i);
+    INFO("largest change of L: " << worst);
+    CHECK(worst < 5e-4);
+  }
+  SECTION("a box in double: L exact to rounding") {
+    BodySet<double> set;
+    const std::size_t i = set.add_box({0, 0, 0}, {0.5, 0.3, 0.1}, 1.0, {turned[0], turned[1], turned[2], turned[3]});
+    set[i].w = {w[0], w[1], w[2]};
+    CHECK(largest_momentum_change(set, i) < 1e-10);
+  }
+  SECTION("a body of principal moments 1, 2 and 3.5") {
+    BodySet<float> set;
+    const std::size_t i = set.add_sphere({0, 0, 0}, 1.0f, 1.0f, {1.0f, 2.0f, 3.5f});
+    set[i].w = w;
+    const double worst = largest_momentum_change(set, i);
+    INFO("largest change of L: " << worst);
+    CHECK(worst < 5e-4);
+  }
 }

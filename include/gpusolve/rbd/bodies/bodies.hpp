@@ -35,7 +35,7 @@ struct Bodies {
   D1<std::uint8_t> shape;   // ShapeKind
   VecD2 shape_param;        // n x 4, see shapes.hpp
   VecD1 inv_mass;           // 0 for fixed bodies
-  VecD2 inertia;            // n x 9, body frame (the gyroscopic term needs it)
+  VecD2 inertia;            // n x 9, body frame (the turn keeps L = R I R^T w)
   VecD2 inv_inertia_body;   // n x 9, body frame; 0 for fixed bodies
   VecD2 inv_inertia;        // n x 9, world frame R I^-1 R^T
   VecD2 pos;                // n x 3, centre of mass (planes: the point n*d)

@@ -16,11 +16,10 @@ namespace gpusolve::rbd {
 
 // The velocity change of the step's external forces (semi-implicit Euler, the
 // velocity half of thesis MoveLinearKernel and MoveAngularKernel):
-// v += dt (f / m + g), w += dt R I^-1 R^T (tau - w x (R I R^T w)). The
-// gyroscopic term -w x I w keeps a freely spinning body's angular momentum; it
-// belongs here, with the other velocity-dependent external terms, so that a
-// contact solve after this sees (and constrains) the whole unconstrained
-// velocity v + dt M^-1 f (thesis Eq. 6). Force and torque are consumed.
+// v += dt (f / m + g), w += dt R I^-1 R^T tau, the velocity a contact solve
+// after this sees (thesis Eq. 6). The gyroscopic part of Euler's equations is
+// not here: Move turns the angular momentum with the body (below), which keeps
+// it exactly. Force and torque are consumed.
 template <class View, class T>
 struct ApplyForces {
   View b;
@@ -32,19 +31,26 @@ struct ApplyForces {
     math::Vector3Global<T> v(b.v, off.v3, i), f(b.force, off.v3, i);
     v += dt * (b.inv_mass[i] * f + gravity);
     f = math::Vector3<T>();
-    math::Vector3Global<T> wg(b.w, off.v3, i), tau(b.torque, off.v3, i);
-    const math::Matrix3x3<T> R(math::Matrix3x3Global<T>(b.R, off.m9, i));
-    const math::Matrix3x3<T> I = math::rotate_tensor(R, math::Matrix3x3Global<T>(b.inertia, off.m9, i));
-    const math::Matrix3x3<T> Iinv(math::Matrix3x3Global<T>(b.inv_inertia, off.m9, i));
-    const math::Vector3<T> w(wg);
-    const math::Vector3<T> Iw = I * w;
-    const math::Vector3<T> rhs = math::Vector3<T>(tau) - w % Iw;
-    wg = w + dt * (Iinv * rhs);
+    math::Vector3Global<T> w(b.w, off.v3, i), tau(b.torque, off.v3, i);
+    w += dt * (math::Matrix3x3<T>(math::Matrix3x3Global<T>(b.inv_inertia, off.m9, i)) * math::Vector3<T>(tau));
     tau = math::Vector3<T>();
   }
 };
 
-// The position half: x += dt v, and q turns by w dt and is renormalised.
+// Whether body i's inertia is the same about every axis (spheres, cubes): its
+// angular velocity and momentum then turn together and need no remapping.
+template <class View, class T>
+GPUSOLVE_HD bool isotropic_inertia(const View& b, std::size_t i) {
+  return b.inertia(i, 1) == 0 && b.inertia(i, 2) == 0 && b.inertia(i, 5) == 0 && b.inertia(i, 0) == b.inertia(i, 4) &&
+         b.inertia(i, 0) == b.inertia(i, 8);
+}
+
+// The position half: x += dt v, and q turns by w dt (the exact exponential
+// map, renormalised). A torque-free body keeps its world angular momentum
+// L = R I R^T w: w after the turn is R' I^-1 R'^T L, with R' the new
+// orientation (the gyroscopic precession, without the explicit term's drift;
+// Box2D v3 and Jolt keep L across the turn alike). R is still the old
+// orientation here (UpdateBody writes the new one after).
 template <class View, class T>
 struct Move {
   View b;
@@ -56,6 +62,17 @@ struct Move {
     math::QuaternionGlobal<T> q(b.q, off.q4, i);
     x += dt * v;
     q = math::integrate_orientation(q, w, dt);
+    if (isotropic_inertia<View, T>(b, i)) return;
+    const math::Matrix3x3<T> I(math::Matrix3x3Global<T>(b.inertia, off.m9, i));
+    const math::Matrix3x3<T> before(math::Matrix3x3Global<T>(b.R, off.m9, i));
+    const math::Vector3<T> w_body(math::transpose(before) * math::Vector3<T>(w));
+    const math::Vector3<T> L_body(I * w_body);
+    const math::Vector3<T> L(before * L_body);  // world frame: what the turn keeps
+    const math::Matrix3x3<T> after = math::to_rotation_matrix(q);
+    const math::Matrix3x3<T> Iinv(math::Matrix3x3Global<T>(b.inv_inertia_body, off.m9, i));
+    const math::Vector3<T> L_after(math::transpose(after) * L);
+    const math::Vector3<T> w_after(Iinv * L_after);
+    w = after * w_after;
   }
 };
 
