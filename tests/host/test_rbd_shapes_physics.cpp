@@ -155,3 +155,99 @@ TEST_CASE("a stack of boxes stands", "[rbd_physics][shapes]") {
     CHECK(std::fabs(set[1 + k].pos[2] - (0.5 + 1.0 * k)) < 0.01);
   }
 }
+
+namespace {
+
+// The box of box_incline_acceleration under the cone model, with Method: its
+// acceleration down the slope between 0.2 s and 0.6 s. The cone bounds the
+// friction of a sliding box at mu N whatever the slope's direction in the
+// contact frame, so g (sin - mu cos) holds for every method.
+template <class Method>
+double box_cone_incline_acceleration(double theta, double mu) {
+  BodySet<double> set;
+  const std::array<double, 3> n = incline_normal(theta);
+  set.add_plane(n, 0);
+  const double hz = 0.5;
+  set.add_box({hz * n[0], 0, hz * n[2]}, {0.5, 0.5, hz}, 1.0, turn(-theta, 0, 1, 0));
+  World<device::cpu, double, ConeFriction, Method> w(set, exact_settings(mu));
+  const std::array<double, 3> down = {-std::cos(theta), 0, -std::sin(theta)};
+  auto speed = [&] {
+    w.syncHost();
+    return set[1].v[0] * down[0] + set[1].v[2] * down[2];
+  };
+  for (int i = 0; i < 100; ++i) w.step();
+  const double v1 = speed();
+  for (int i = 0; i < 200; ++i) w.step();
+  return (speed() - v1) / (200 * 0.002);
+}
+
+template <class Method>
+void check_box_cone_incline() {
+  const double mu = 0.5;
+  for (double deg : {35.0, 45.0}) {
+    const double theta = deg * M_PI / 180;
+    INFO(Method::name << " at " << deg << " degrees");
+    CHECK(box_cone_incline_acceleration<Method>(theta, mu) ==
+          Approx(g * (std::sin(theta) - mu * std::cos(theta))).epsilon(0.01));
+  }
+}
+
+// A unit cube (half extent 0.5, mass 1) resting on the floor, launched at
+// speed v0 in direction phi (radians from x) with mu = 0.5: its largest
+// height above rest, largest tilt (radians) and distance until it stops.
+struct Slide {
+  double hop, tilt, distance;
+};
+template <class Method>
+Slide launch_cube(double v0, double phi) {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  set.add_box({0, 0, 0.5}, {0.5, 0.5, 0.5}, 1.0);
+  set[1].v = {v0 * std::cos(phi), v0 * std::sin(phi), 0};
+  SolverSettings<double> s = exact_settings(0.5);
+  World<device::cpu, double, ConeFriction, Method> w(set, s);
+  Slide out{0, 0, 0};
+  const int steps = int(v0 / (0.5 * g) / s.dt) + 100;  // stopped well before
+  for (int k = 0; k < steps; ++k) {
+    w.step();
+    if (k % 5 != 4 && k + 1 != steps) continue;
+    w.syncHost();
+    out.hop = std::max(out.hop, set[1].pos[2] - 0.5);
+    out.tilt = std::max(out.tilt, std::acos(std::min(1.0, w.bodies().R(1, 8))));
+  }
+  out.distance = std::hypot(set[1].pos[0], set[1].pos[1]);
+  return out;
+}
+
+template <class Method>
+void check_cube_slides_flat() {
+  const double mu = 0.5;
+  for (double v0 : {1.0, 3.0, 10.0})
+    for (double deg : {0.0, 30.0, 45.0}) {
+      INFO(Method::name << ", v0 " << v0 << " m/s at " << deg << " degrees");
+      const Slide s = launch_cube<Method>(v0, deg * M_PI / 180);
+      CHECK(s.hop < 1e-3 * 0.5);
+      CHECK(s.tilt < 0.1 * M_PI / 180);
+      CHECK(s.distance == Approx(v0 * v0 / (2 * mu * g)).epsilon(0.01));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("a box slides down an incline under the cone at g (sin - mu cos) with every method",
+          "[rbd_physics][shapes]") {
+  check_box_cone_incline<Jacobi<Gather>>();
+  check_box_cone_incline<AcceleratedJacobi<Gather>>();
+  check_box_cone_incline<ColouredGaussSeidel>();
+  check_box_cone_incline<Substepping<>>();
+  check_box_cone_incline<AcceleratedCG>();
+}
+
+TEST_CASE("a cube launched along the floor stays down, stays level and stops after v0^2 / (2 mu g)",
+          "[rbd_physics][shapes]") {
+  check_cube_slides_flat<AcceleratedJacobi<Gather>>();
+  check_cube_slides_flat<Jacobi<Gather>>();
+  check_cube_slides_flat<ColouredGaussSeidel>();
+  check_cube_slides_flat<Substepping<>>();
+  check_cube_slides_flat<AcceleratedCG>();
+}

@@ -124,10 +124,18 @@ struct DirectSink {
 
 }  // namespace detail
 
-// The contact's own diagonal block W = Q^T (K_a + K_b) Q with, per body,
-// K p = m^-1 p + (I^-1 (r x p)) x r  (= (m^-1 E - r× I^-1 r×) p), projected to
-// the model's rows and inverted into dinv. Fixed bodies contribute nothing
-// (zero inverse mass and inertia). Run once per step, after collision detection.
+// The contact's step dinv from its own diagonal block W = Q^T (K_a + K_b) Q
+// with, per body, K p = m^-1 p + (I^-1 (r x p)) x r (= (m^-1 E - r× I^-1 r×) p),
+// projected to the model's rows. Fixed bodies contribute nothing (zero inverse
+// mass and inertia). Run once per step, after collision detection.
+// dinv is diagonal: the normal row steps by 1 / W_nn, both friction rows by one
+// scalar, 1 / max(W_tt, W_oo). A fixed point of x = proj(x - D r) solves the
+// contact problem only where D keeps the cone's geometry: with the full W^-1,
+// the normal and friction rows of a point off a body's centre line (a box's
+// corner) are coupled, and the fixed point let a sliding box's four points
+// each push sideways and lift it (issue 35: 13% too little friction on a
+// slope, a hop on a floor). For a sphere W is already diagonal with equal
+// friction rows, and the step is the same.
 // With `scale`, dinv is multiplied by *scale: the projected update's step is
 // omega dinv, so a retry at a smaller omega can scale the blocks instead of
 // rebuilding an iteration (JacobiSolver; by a power of two the same bits).
@@ -158,12 +166,10 @@ struct InverseBlocks {
       }
     }
     const T s = (scale ? *scale : T(1)) / T(pair_points(i));
-    if constexpr (R == 1) {
-      c.dinv(i, 0) = s / W[0][0];
-    } else {
-      const math::Matrix3x3<T> inv = math::inverse_spd(
-          math::Matrix3x3<T>(W[0][0], W[0][1], W[0][2], W[1][0], W[1][1], W[1][2], W[2][0], W[2][1], W[2][2]));
-      for (std::size_t k = 0; k < 9; ++k) c.dinv(i, k) = s * inv[k];
+    c.dinv(i, 0) = s / W[0][0];
+    if constexpr (R == 3) {
+      const T friction = s / (W[1][1] > W[2][2] ? W[1][1] : W[2][2]);
+      for (std::size_t k = 1; k < 9; ++k) c.dinv(i, k) = k % 4 == 0 ? friction : T(0);
     }
   }
   // The contacts of contact i's body pair: its neighbours in the (a, b) order
