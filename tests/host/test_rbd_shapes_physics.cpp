@@ -251,3 +251,44 @@ TEST_CASE("a cube launched along the floor stays down, stays level and stops aft
   check_cube_slides_flat<Substepping<>>();
   check_cube_slides_flat<AcceleratedCG>();
 }
+
+TEST_CASE("a cube at rest on a plane: four points whose impulses sum to its weight", "[rbd_physics][shapes]") {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  set.add_box({0, 0, 0.5}, {0.5, 0.5, 0.5}, 2.0, turn(0.3, 0, 0, 1));
+  SolverSettings<double> s = exact_settings(0.5);
+  World<device::cpu, double> w(set, s);
+  for (int i = 0; i < 500; ++i) w.step();
+  auto& c = w.contacts();
+  REQUIRE(c.size() == 4);
+  double normal = 0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    CHECK(c.x(i, 0) > 0);  // every corner carries a share
+    normal += c.x(i, 0);
+  }
+  CHECK(normal == Approx(2.0 * g * s.dt).epsilon(1e-3));  // m g dt, the weight's impulse per step
+}
+
+TEST_CASE("a cube dropped flat onto a plane comes to rest without bouncing or sinking", "[rbd_physics][shapes]") {
+  // A unit cube (half extent 0.5, mass 1) released 0.25 above the floor, the
+  // library's defaults in float, as a new user would run it.
+  BodySet<float> set;
+  set.add_plane({0, 0, 1}, 0);
+  set.add_box({0, 0, 0.75f}, {0.5f, 0.5f, 0.5f}, 1.0f);
+  World<device::cpu> w(set, SolverSettings<float>{});
+  double lowest = 1, stopped_at = -1, highest_after = 0;
+  for (int i = 0; i < 800; ++i) {
+    w.step();
+    w.syncHost();
+    const double z = set[1].pos[2];
+    lowest = std::min(lowest, z);
+    if (stopped_at < 0 && set[1].v[2] > -1e-3 && z < 0.6) stopped_at = z;
+    if (stopped_at >= 0) highest_after = std::max(highest_after, z);
+  }
+  INFO("lowest " << lowest << ", stopped at " << stopped_at << ", highest after " << highest_after);
+  REQUIRE(stopped_at > 0);
+  CHECK(0.5 - lowest <= 0.0025 * 0.5);              // sank at most 0.25% of its half extent
+  CHECK(highest_after - stopped_at <= 1e-3 * 0.5);  // no bounce
+  CHECK(std::fabs(set[1].v[2]) < 1e-3);
+  CHECK(std::acos(std::min(1.0, double(w.bodies().R(1, 8)))) < 0.1 * M_PI / 180);
+}
