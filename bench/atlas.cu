@@ -7,9 +7,9 @@
 //        [--margins 0.1]
 //        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--csv FILE]
 //
-// pile:   the shared pile (bench/shared_pile.hpp, PILE.md), N spheres dropped into
-//         an open box; 1 200 steps for N <= 10 000, else 900 (PILE.md's counts).
-// cubes:  the shared cube pile (PILE.md), N cubes turned at random; 2 400 steps.
+// pile:   the shared pile (bench/shared_pile.hpp, docs/piles.md), N spheres dropped into
+//         an open box; 1 200 steps for N <= 10 000, else 900 (docs/piles.md's counts).
+// cubes:  the shared cube pile (docs/piles.md), N cubes turned at random; 2 400 steps.
 // mixed:  the cube pile's lattice filled with spheres, boxes and capsules in
 //         turn (bench/shared_pile.hpp); 2 400 steps.
 // pyramid: a pyramid of unit cubes, --n layers (20: 210 boxes); 4 000 steps (10 s).

@@ -1,4 +1,4 @@
-// The atlas's scenes as BodySets: the shared sphere and cube piles of PILE.md
+// The atlas's scenes as BodySets: the shared sphere and cube piles of docs/piles.md
 // (the scenes peer engines are measured on), a mixed pile, a column of spheres
 // of alternating mass, a box pyramid and a box stack.
 #pragma once
@@ -30,7 +30,7 @@ void add_open_box(rbd::BodySet<T>& set, std::size_t L, double s) {
   set.add_plane({0, -1, 0}, -h);
 }
 
-// Calls body(i, centre) for the n sites of PILE.md's jittered cubic lattice of
+// Calls body(i, centre) for the n sites of docs/piles.md's jittered cubic lattice of
 // spacing s, lowest layer at z0: side L = ceil(cbrt n), site i at (i mod L,
 // (i / L) mod L, i / L^2) plus jitters (jx, jy, jz) from std::mt19937(1) and
 // uniform_real_distribution(-0.05, 0.05); returns L.
@@ -59,7 +59,7 @@ rbd::BodySet<T> shared_pile(std::size_t n) {
   return set;
 }
 
-// Random orientations as PILE.md draws them: four normal(0, 1) draws on
+// Random orientations as docs/piles.md draws them: four normal(0, 1) draws on
 // std::mt19937(2), normalised.
 class RandomTurns {
  public:

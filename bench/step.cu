@@ -4,7 +4,7 @@
 //                          [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
 //                          [--cpu-max 1000000] [--csv FILE]
 //
-// For each N the shared pile (bench/shared_pile.hpp, ../shared/bench/PILE.md)
+// For each N the shared pile (bench/shared_pile.hpp, docs/piles.md)
 // falls for `settle` steps on the GPU at the library's defaults; every timing
 // then starts from that same settled state, copied into a fresh World:
 //   jacobi10:  projected Jacobi (gather), exactly 10 iterations per step, one check;
@@ -90,7 +90,7 @@ SolverSettings<T> settings_for(const std::string& mode, const std::string& loop)
   s.persistent_clusters = loop != "auto-grid";
   s.graphs = loop == "graphs";
   s.detection_graph = loop != "auto-nograph" && loop != "launches";
-  s.friction = T(0.5);  // PILE.md
+  s.friction = T(0.5);  // docs/piles.md
   if (mode == "jacobi10" || mode == "atomic10") {
     s.max_iterations = 10, s.check_every = 10;
     s.tolerance = T(1e-30);  // runs all 10

@@ -1,6 +1,6 @@
 // Penetration judged from the bodies' states alone: positions, orientations
 // and shapes, not the contacts a detection found. The same figure a peer
-// engine's states give (PILE.md measures NVIDIA Newton so), and a check on our
+// engine's states give (docs/piles.md measures NVIDIA Newton so), and a check on our
 // own detection: a pair it missed still counts here. Host side, in double.
 #pragma once
 
