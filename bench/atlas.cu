@@ -14,6 +14,8 @@
 //         turn (bench/shared_pile.hpp); 2 400 steps.
 // pyramid: a pyramid of unit cubes, --n layers (20: 210 boxes); 4 000 steps (10 s).
 // stack:  --n unit cubes stacked (20); 4 000 steps (10 s).
+// field:  20 pyramids of --n layers (20: 4 200 boxes); 4 000 steps (10 s).
+// slabs:  a tower of --n slabs 3 x 1 x 0.2 laid crosswise in pairs (100); 4 000 steps.
 // column: ten spheres stacked (--n N: N spheres; a tall stack is --n 40 --ratios 1),
 //         masses alternating 1 and the ratio; 2 000 steps.
 // hopper: the thesis's hopper scene (examples/scene_hopper.hpp, 9 857 spheres,
@@ -100,6 +102,11 @@ struct Result {
   bool fell = false;  // a column's top sphere left its place by a radius; a tower's box moved 1% of its size
 };
 
+// Scenes that must stand still: their verdict is whether a box moved.
+bool tower(const std::string& scene) {
+  return scene == "pyramid" || scene == "stack" || scene == "field" || scene == "slabs";
+}
+
 constexpr double hopper_friction = 0.1;  // the scene's (examples/scene_hopper.hpp)
 
 SolverSettings<T> settings_for(const Run& r) {
@@ -157,6 +164,8 @@ rbd::BodySet<T> scene_set(const Run& r) {
   if (r.scene == "mixed") return mixed_pile<T>(r.n);
   if (r.scene == "pyramid") return box_pyramid<T>(r.n);
   if (r.scene == "stack") return box_stack<T>(r.n);
+  if (r.scene == "field") return pyramid_field<T>(r.n);
+  if (r.scene == "slabs") return slab_tower<T>(r.n);
   if (r.scene == "column") return mass_column<T>(r.n, r.ratio);
   return settled_hopper<Dev>(r.n);
 }
@@ -229,7 +238,7 @@ Result run(const Run& r) {
       out.drift = std::max(out.drift, std::sqrt(d2) / size);
     }
   if (r.scene == "column") out.fell = std::fabs(out.height - double(2 * r.n - 1)) > 1.0;
-  if (r.scene == "pyramid" || r.scene == "stack") out.fell = out.drift > 0.01;  // a box moved 1% of its size
+  if (tower(r.scene)) out.fell = out.drift > 0.01;  // a box moved 1% of its size
   double sum = 0;
   for (double v : ms) sum += v;
   out.ms_mean = sum / double(ms.size());
@@ -260,7 +269,7 @@ const char* verdict(const Run& r, const Result& x) {
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "--scene pile|cubes|mixed|column|pyramid|stack|hopper [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
+      "--scene pile|cubes|mixed|column|pyramid|stack|field|slabs|hopper [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
       "[--warm LIST] [--dts LIST] [--steps N] [--backend gpu|cpu] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -277,7 +286,7 @@ int main(int argc, char** argv) {
     else if (a == "--csv") o.csv = option_value(argc, argv, i);
     else usage_exit(argv[0], usage, a);
   }
-  const std::vector<std::string> scenes{"pile", "cubes", "mixed", "column", "pyramid", "stack", "hopper"};
+  const std::vector<std::string> scenes{"pile", "cubes", "mixed", "column", "pyramid", "stack", "field", "slabs", "hopper"};
   if (std::find(scenes.begin(), scenes.end(), o.scene) == scenes.end()) usage_exit(argv[0], usage, "--scene " + o.scene);
   if (o.backend != "gpu" && o.backend != "cpu") usage_exit(argv[0], usage, "--backend " + o.backend);
   try {
@@ -300,8 +309,12 @@ int main(int argc, char** argv) {
         "max_penetration,residual_median,iterations_mean,capped_steps,diverged_steps,kinetic_energy,height,drift,verdict,"
         "state_penetration,flagged_steps,gpu");
     const std::vector<double> ratios = o.scene == "column" ? o.ratios : std::vector<double>{1};
-    const bool tower = o.scene == "pyramid" || o.scene == "stack";
-    const std::size_t scene_n = o.scene == "column" ? 10 : o.scene == "hopper" ? 9857 : tower ? 20 : 10000;
+    const bool is_tower = tower(o.scene);
+    const std::size_t scene_n = o.scene == "column"   ? 10
+                                : o.scene == "hopper" ? 9857
+                                : o.scene == "slabs"  ? 100
+                                : is_tower            ? 20
+                                                      : 10000;
     const std::vector<std::size_t> ns = !o.n.empty() ? o.n : std::vector<std::size_t>{scene_n};
     for (std::size_t n : ns)
       for (double ratio : ratios)
@@ -314,7 +327,7 @@ int main(int argc, char** argv) {
                 if (r.steps == 0)
                   r.steps = o.scene == "column"                        ? 2000
                             : o.scene == "hopper"                      ? 600
-                            : tower                                    ? 4000
+                            : is_tower                                 ? 4000
                             : o.scene == "cubes" || o.scene == "mixed" ? 2400
                             : n <= 10000                               ? 1200
                                                                        : 900;

@@ -114,17 +114,56 @@ rbd::BodySet<T> mixed_pile(std::size_t n) {
   return set;
 }
 
-// A pyramid of unit cubes (half extent 0.5, mass 1) on the floor: `layers`
-// rows in the x-z plane, the bottom one `layers` long, each row centred on
-// the one below (210 boxes for 20 layers), 0.01 apart.
+// Adds a pyramid of unit cubes (half extent 0.5, mass 1) standing on the
+// floor at (x0, y0): `layers` rows in the x-z plane, the bottom one `layers`
+// long, each row centred on the one below (210 boxes for 20 layers), 0.01 apart.
+template <class T>
+void add_box_pyramid(rbd::BodySet<T>& set, std::size_t layers, double x0, double y0) {
+  for (std::size_t l = 0; l < layers; ++l)
+    for (std::size_t k = 0; k + l < layers; ++k)
+      set.add_box({T(x0 + (double(k) - double(layers - l - 1) / 2) * 1.01), T(y0), T(0.5 + 1.0 * double(l))},
+                  {T(0.5), T(0.5), T(0.5)}, T(1));
+}
+
+// One pyramid of `layers` on the floor (add_box_pyramid).
 template <class T>
 rbd::BodySet<T> box_pyramid(std::size_t layers) {
   rbd::BodySet<T> set;
   set.add_plane({0, 0, 1}, 0);
-  for (std::size_t l = 0; l < layers; ++l)
-    for (std::size_t k = 0; k + l < layers; ++k)
-      set.add_box({T((double(k) - double(layers - l - 1) / 2) * 1.01), T(0), T(0.5 + 1.0 * double(l))},
-                  {T(0.5), T(0.5), T(0.5)}, T(1));
+  add_box_pyramid(set, layers, 0, 0);
+  return set;
+}
+
+// A field of 20 pyramids of `layers` (4 200 boxes for 20 layers, the size of
+// NVIDIA Newton's pyramid example): 4 rows along x of 5 pyramids along y, 2
+// apart in y and a base plus 2 apart in x.
+template <class T>
+rbd::BodySet<T> pyramid_field(std::size_t layers) {
+  rbd::BodySet<T> set;
+  set.add_plane({0, 0, 1}, 0);
+  const double pitch = double(layers) * 1.01 + 2;
+  for (int row = 0; row < 4; ++row)
+    for (int k = 0; k < 5; ++k) add_box_pyramid(set, layers, (row - 1.5) * pitch, (k - 2) * 2.0);
+  return set;
+}
+
+// A tower of `count` thin slabs (3 x 1 x 0.2, density 1, as Kapla blocks) on
+// the floor, laid in pairs: a layer's two slabs lie side by side 1.5 apart,
+// along x in even layers and along y in odd ones.
+template <class T>
+rbd::BodySet<T> slab_tower(std::size_t count) {
+  rbd::BodySet<T> set;
+  set.add_plane({0, 0, 1}, 0);
+  const double s = std::sqrt(0.5);
+  const std::array<T, 4> along_y{T(s), 0, 0, T(s)};  // a quarter turn about z
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t layer = k / 2;
+    const double side = k % 2 == 0 ? -0.75 : 0.75, z = 0.1 + 0.2 * double(layer);
+    if (layer % 2 == 0)
+      set.add_box({0, T(side), T(z)}, {T(1.5), T(0.5), T(0.1)}, T(0.6));
+    else
+      set.add_box({T(side), 0, T(z)}, {T(1.5), T(0.5), T(0.1)}, T(0.6), along_y);
+  }
   return set;
 }
 

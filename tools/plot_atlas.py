@@ -158,7 +158,7 @@ def plot_scenes(rows, out):
     scenes = sorted({r["scene"] for r in rows})
     fig, axes = plt.subplots(1, len(scenes), figsize=(4.5 * len(scenes), 4), squeeze=False)
     for ax, scene in zip(axes[0], scenes):
-        tower = scene in ("pyramid", "stack")
+        tower = scene in ("pyramid", "stack", "field", "slabs")
         for r in (r for r in rows if r["scene"] == scene):
             y = float(r["drift"]) if tower else float(r["max_penetration"])
             ax.scatter(float(r["ms_per_step_median"]), 100 * y)

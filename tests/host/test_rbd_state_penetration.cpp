@@ -1,6 +1,7 @@
 // Penetration from the bodies' states alone (statistics/state_penetration.hpp)
 // against overlaps computed by hand: two boxes face on face, edge on face,
-// corner on face; balls, capsules and planes; a compound's parts.
+// corner on face; balls, capsules and planes; a compound's parts; a heap's
+// contacts; the atlas's box scenes, which must start apart.
 #include <array>
 #include <cmath>
 
@@ -8,6 +9,7 @@
 #include "gpusolve/rbd/statistics/state_penetration.hpp"
 #include "gpusolve/rbd/world.hpp"
 #include "test_rbd_scenes.hpp"
+#include "../../bench/shared_pile.hpp"
 
 using namespace gpusolve;
 using namespace gpusolve::rbd;
@@ -119,4 +121,13 @@ TEST_CASE("a settled heap's penetration from the states agrees with the contacts
   INFO("from the contacts " << found << ", from the states " << p.relative << " (bodies " << p.a << ", " << p.b << ")");
   CHECK(p.relative > 0);
   CHECK(std::fabs(p.relative - found) <= 0.1 * std::max(p.relative, found));
+}
+
+TEST_CASE("the atlas's scenes of boxes start with no body inside another", "[state_penetration]") {
+  CHECK(state_penetration(gpusolve::bench::box_pyramid<double>(20)).relative == 0);
+  CHECK(state_penetration(gpusolve::bench::pyramid_field<double>(20)).relative == 0);
+  CHECK(state_penetration(gpusolve::bench::slab_tower<double>(100)).relative < 1e-12);  // layers touch: 0.2 is not exact in binary
+  CHECK(state_penetration(gpusolve::bench::box_stack<double>(20)).relative == 0);
+  CHECK(state_penetration(gpusolve::bench::cube_pile<double>(1000)).relative == 0);
+  CHECK(gpusolve::bench::pyramid_field<double>(20).size() == 1 + 4200);
 }
