@@ -78,9 +78,10 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
     SolverStats<T> stats;
     const BV b = bodies.view();
     const CV c = contacts.view();
-    if (!this->begin(b, c, s, stats, stream)) return stats;
-    const std::size_t nc = c.size();
+    if (!this->prepare(c, s, stats)) return stats;
     const Device dev{};
+    launch(dev, c.size(), InverseBlocks<Model, BV, CV, T>{b, c, nullptr, false}, stream);  // whole steps: a sweep
+    const std::size_t nc = c.size();
     colouring_.build(b, c, stream);
     stats.colours = colouring_.colours();
     const std::uint32_t* order = colouring_.order();

@@ -141,15 +141,18 @@ struct DirectSink {
 // rebuilding an iteration (JacobiSolver; by a power of two the same bits).
 // The k points of one body pair's manifold (a box face on a face: four,
 // nearly parallel) act on the same two bodies almost as one constraint, so
-// each takes 1/k of the step: a simultaneous update of all k would apply the
-// pair's correction k times over, which a Jacobi iteration does not survive
-// (the shared cube pile diverged within 500 steps). A pair with one point, as
+// under a simultaneous (Jacobi-type) update each takes 1/k of the step: all k
+// at once would apply the pair's correction k times over, which a Jacobi
+// iteration does not survive (the shared cube pile diverged within 500 steps).
+// A sweep that updates one point at a time (Gauss-Seidel) sees the others'
+// changes and takes whole steps (`shared` false). A pair with one point, as
 // every sphere pair, is unchanged.
 template <class Model, class BV, class CV, class T>
 struct InverseBlocks {
   BV b;
   CV c;
   const T* scale = nullptr;
+  bool shared = true;  // a pair's k points take 1/k of a step each
   GPUSOLVE_HD void operator()(std::size_t i) const {
     constexpr std::size_t R = Model::rows;
     const detail::Frame<T, Model, CV> f(c, i);
@@ -165,7 +168,7 @@ struct InverseBlocks {
         for (std::size_t row = 0; row < R; ++row) W[row][col] += math::dot(f.q[row], Kq);
       }
     }
-    const T s = (scale ? *scale : T(1)) / T(pair_points(i));
+    const T s = (scale ? *scale : T(1)) / (shared ? T(pair_points(i)) : T(1));
     c.dinv(i, 0) = s / W[0][0];
     if constexpr (R == 3) {
       const T friction = s / (W[1][1] > W[2][2] ? W[1][1] : W[2][2]);

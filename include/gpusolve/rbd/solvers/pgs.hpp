@@ -37,7 +37,7 @@ SolverStats<T> solve_gauss_seidel(Bodies<device::cpu, T>& bodies, Contacts<devic
   const CV c = contacts.view();
   VectorD2<T, device_is<device::cpu>> rhs(nc, Model::rows);
   VectorD1<T, device_is<device::cpu>> residual(nc);
-  const InverseBlocks<Model, BV, CV, T> blocks{b, c};
+  const InverseBlocks<Model, BV, CV, T> blocks{b, c, nullptr, false};  // one point at a time: whole steps
   const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs.view(), T(1) / s.dt, s.correction};
   for (std::size_t i = 0; i < nc; ++i) blocks(i);
   ResidualCheck<device::cpu, T> check;
