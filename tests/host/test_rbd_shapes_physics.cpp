@@ -286,3 +286,63 @@ TEST_CASE("a cube dropped flat onto a plane comes to rest without bouncing or si
   CHECK(std::fabs(set[1].v[2]) < 1e-3);
   CHECK(std::acos(std::min(1.0, double(w.bodies().R(1, 8)))) < 0.1 * M_PI / 180);
 }
+
+TEST_CASE("a union of two boxes is the box they tile: mass, inertia and sliding under the cone",
+          "[rbd_physics][shapes][compound]") {
+  const std::array<double, 3> h{0.5, 0.3, 0.25};
+  const std::vector<Part<double>> halves = {{box, {0.25, 0.3, 0.25, 0}, {-0.25, 0, 0}, {1, 0, 0, 0}},
+                                            {box, {0.25, 0.3, 0.25, 0}, {0.25, 0, 0}, {1, 0, 0, 0}}};
+  BodySet<double> pair;
+  const std::size_t u = pair.add_compound({1, 2, 3}, halves, 2.0);
+  const std::size_t b = pair.add_box({1, 2, 3}, h, 2.0);
+  for (int k = 0; k < 9; ++k) CHECK(pair[u].inertia[k] == Approx(pair[b].inertia[k]).margin(1e-12));
+  for (int k = 0; k < 3; ++k) CHECK(pair[u].pos[k] == Approx(pair[b].pos[k]));
+  CHECK(pair[u].inv_mass == Approx(pair[b].inv_mass));
+
+  const double theta = 35 * M_PI / 180, mu = 0.5;
+  const std::array<double, 3> n = incline_normal(theta);
+  const auto slide = [&](bool as_union) {
+    BodySet<double> set;
+    set.add_plane(n, 0);
+    const std::array<double, 3> at{h[2] * n[0], 0, h[2] * n[2]};
+    if (as_union)
+      set.add_compound(at, halves, 2.0, turn(-theta, 0, 1, 0));
+    else
+      set.add_box(at, h, 2.0, turn(-theta, 0, 1, 0));
+    return slope_acceleration<ConeFriction, AcceleratedJacobi<Gather>>(set, theta, mu, as_union ? 8 : 4);
+  };
+  const double exact = g * (std::sin(theta) - mu * std::cos(theta));
+  CHECK(slide(false) == Approx(exact).epsilon(0.01));
+  CHECK(slide(true) == Approx(exact).epsilon(0.01));  // its two faces' 8 points act as the box's 4
+}
+
+namespace {
+
+// An L of two boxes (a bar 0.2 x 0.6 x 1.2 and a foot 0.4 x 0.6 x 0.2 beside its
+// base, along +x) standing on the bar's back bottom edge, turned back by phi
+// about it; the cosine of its tilt after 3 s (1: upright, 0: on its back).
+double l_tilt_after_release(double phi) {
+  const std::vector<Part<double>> l = {{box, {0.1, 0.3, 0.6, 0}, {0, 0, 0.6}, {1, 0, 0, 0}},
+                                       {box, {0.2, 0.3, 0.1, 0}, {0.3, 0, 0.1}, {1, 0, 0, 0}}};
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  // The frame's origin is 0.1 in front of the edge (-0.1, 0, 0): turned by -phi
+  // about y, the edge stays at the world's origin.
+  set.add_compound({0.1 * std::cos(phi), 0, 0.1 * std::sin(phi)}, l, 1.0, turn(-phi, 0, 1, 0));
+  SolverSettings<double> st = exact_settings(0.8);
+  st.tolerance = 1e-7;
+  World<device::cpu, double> w(set, st);
+  for (int i = 0; i < 1500; ++i) w.step();
+  return w.bodies().R(1, 8);
+}
+
+}  // namespace
+
+TEST_CASE("an L-shaped union tips over its edge exactly when its centre of mass passes the edge",
+          "[rbd_physics][shapes][compound]") {
+  // Volumes 0.144 (bar) and 0.048 (foot): the centre of mass is 0.175 in front
+  // of the edge and 0.475 above it.
+  const double critical = std::atan(0.175 / 0.475);
+  CHECK(l_tilt_after_release(critical - 0.03) > 0.999);        // falls back onto its base
+  CHECK(std::fabs(l_tilt_after_release(critical + 0.03)) < 0.05);  // lands on its back
+}
