@@ -346,3 +346,30 @@ TEST_CASE("an L-shaped union tips over its edge exactly when its centre of mass 
   CHECK(l_tilt_after_release(critical - 0.03) > 0.999);        // falls back onto its base
   CHECK(std::fabs(l_tilt_after_release(critical + 0.03)) < 0.05);  // lands on its back
 }
+
+TEST_CASE("a union holds its parts together where the same parts as separate bodies fall apart",
+          "[rbd_physics][shapes][compound]") {
+  // A post (0.4 x 0.4 x 1) on the floor with an arm (0.8 x 0.2 x 0.2) sticking
+  // out of its top along x: the union's centre of mass (x = 0.1) lies over the
+  // post's base, so it stands; the arm alone only touches the post's side.
+  const std::vector<Part<double>> parts = {{box, {0.2, 0.2, 0.5, 0}, {0, 0, 0.5}, {1, 0, 0, 0}},
+                                           {box, {0.4, 0.1, 0.1, 0}, {0.6, 0, 0.9}, {1, 0, 0, 0}}};
+  SolverSettings<double> s = exact_settings(0.5);
+  s.tolerance = 1e-7;
+  BodySet<double> joined;
+  joined.add_plane({0, 0, 1}, 0);
+  joined.add_compound({0, 0, 0}, parts, 1.0);
+  const std::array<double, 3> start = joined[1].pos;
+  World<device::cpu, double> union_world(joined, s);
+  BodySet<double> apart;
+  apart.add_plane({0, 0, 1}, 0);
+  apart.add_box({0, 0, 0.5}, {0.2, 0.2, 0.5}, 0.16 / 0.192);
+  apart.add_box({0.6, 0, 0.9}, {0.4, 0.1, 0.1}, 0.032 / 0.192);
+  World<device::cpu, double> parts_world(apart, s);
+  union_world.advance(400);  // 0.8 s: time enough for the arm to fall 3 m
+  parts_world.advance(400);
+  union_world.syncHost();
+  parts_world.syncHost();
+  for (int k = 0; k < 3; ++k) CHECK(std::fabs(joined[1].pos[k] - start[k]) < 1e-4);
+  CHECK(apart[2].pos[2] < 0.5);  // the arm fell from 0.9 to the floor
+}
