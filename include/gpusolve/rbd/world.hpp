@@ -58,7 +58,7 @@ struct StepEnd {
 // The defaults, APGD with the per-body gather and the isotropic cone, are the
 // atlas's best at equal penetration (docs/tuning/solve.md). Shapes: the shape
 // kinds the World compiles in (shapes.hpp); a program of spheres and planes
-// compiles in half the time with spheres_and_planes (SphereWorld, below;
+// compiles much faster with spheres_and_planes (SphereWorld, below;
 // docs/build_time.md), and a body of another kind is refused by name.
 //
 // A step is five stages, queued in this order (queue_step):
