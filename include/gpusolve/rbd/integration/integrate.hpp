@@ -45,12 +45,25 @@ GPUSOLVE_HD bool isotropic_inertia(const View& b, std::size_t i) {
          b.inertia(i, 0) == b.inertia(i, 8);
 }
 
+// The angular velocity R I^-1 R^T L of angular momentum L (world frame) at
+// the orientation q, with the body-frame inverse inertia Iinv.
+template <class T>
+GPUSOLVE_HD math::Vector3<T> velocity_of_momentum(const math::Quaternion<T>& q, const math::Matrix3x3<T>& Iinv,
+                                                  const math::Vector3<T>& L) {
+  const math::Matrix3x3<T> R = math::to_rotation_matrix(q);
+  const math::Vector3<T> L_body(math::transpose(R) * L);
+  const math::Vector3<T> w_body(Iinv * L_body);
+  return math::Vector3<T>(R * w_body);
+}
+
 // The position half: x += dt v, and q turns by w dt (the exact exponential
-// map, renormalised). A torque-free body keeps its world angular momentum
-// L = R I R^T w: w after the turn is R' I^-1 R'^T L, with R' the new
-// orientation (the gyroscopic precession, without the explicit term's drift;
-// Box2D v3 and Jolt keep L across the turn alike). R is still the old
-// orientation here (UpdateBody writes the new one after).
+// map, renormalised). A body whose inertia differs between axes keeps its
+// world angular momentum L = R I R^T w across the turn: w afterwards is
+// R' I^-1 R'^T L at the new orientation R' (the gyroscopic precession, as
+// Box2D v3 and Jolt keep L), and the turn takes the mean of w before and of
+// that w at a first guess of R' (a trapezoidal step: the rotational energy's
+// drift is second order in dt). R is still the old orientation here
+// (UpdateBody writes the new one after).
 template <class View, class T>
 struct Move {
   View b;
@@ -61,18 +74,24 @@ struct Move {
     math::Vector3Global<T> v(b.v, off.v3, i), x(b.pos, off.v3, i), w(b.w, off.v3, i);
     math::QuaternionGlobal<T> q(b.q, off.q4, i);
     x += dt * v;
-    q = math::integrate_orientation(q, w, dt);
-    if (isotropic_inertia<View, T>(b, i)) return;
+    if (isotropic_inertia<View, T>(b, i)) {
+      q = math::integrate_orientation(q, w, dt);
+      return;
+    }
+    const math::Quaternion<T> q0(q);
+    const math::Vector3<T> w0(w);
     const math::Matrix3x3<T> I(math::Matrix3x3Global<T>(b.inertia, off.m9, i));
     const math::Matrix3x3<T> before(math::Matrix3x3Global<T>(b.R, off.m9, i));
-    const math::Vector3<T> w_body(math::transpose(before) * math::Vector3<T>(w));
-    const math::Vector3<T> L_body(I * w_body);
+    const math::Vector3<T> w0_body(math::transpose(before) * w0);
+    const math::Vector3<T> L_body(I * w0_body);
     const math::Vector3<T> L(before * L_body);  // world frame: what the turn keeps
-    const math::Matrix3x3<T> after = math::to_rotation_matrix(q);
     const math::Matrix3x3<T> Iinv(math::Matrix3x3Global<T>(b.inv_inertia_body, off.m9, i));
-    const math::Vector3<T> L_after(math::transpose(after) * L);
-    const math::Vector3<T> w_after(Iinv * L_after);
-    w = after * w_after;
+    const math::Vector3<T> w_guess = velocity_of_momentum(math::Quaternion<T>(math::integrate_orientation(q0, w0, dt)),
+                                                          Iinv, L);
+    const math::Vector3<T> w_mean(T(0.5) * (w0 + w_guess));
+    const math::Quaternion<T> q1 = math::integrate_orientation(q0, w_mean, dt);
+    q = q1;
+    w = velocity_of_momentum(q1, Iinv, L);
   }
 };
 
