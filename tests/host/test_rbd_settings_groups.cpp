@@ -96,6 +96,7 @@ TEST_CASE("a SphereWorld steps spheres as World does and refuses a box by name",
   } catch (const InvalidBodyError& e) {
     CHECK(e.body() == box);
     CHECK(e.field() == "shape");
+    CHECK(std::string(e.what()).find("not compiled for box") != std::string::npos);
   }
   BodySet<float> boxes;
   boxes.add_box({0, 0, 1}, {0.5f, 0.5f, 0.5f}, 1.0f);

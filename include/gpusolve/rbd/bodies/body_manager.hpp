@@ -82,8 +82,10 @@ class BodyManager {
         kinds |= shape_bit(host_.parts()[b.first_part + k].shape);
     if (kinds & ~compiled_) {
       std::ostringstream os;
-      os << "its shape kinds (mask " << kinds << ") are not all among those this World was compiled for (mask "
-         << compiled_ << "); give World the Shapes it needs (all_shapes holds every kind)";
+      os << "this World was not compiled for";
+      for (int k = 0; k < shape_kinds; ++k)
+        if (kinds & ~compiled_ & shape_bit(ShapeKind(k))) os << ' ' << shape_names[k];
+      os << "; give World the Shapes it needs (all_shapes holds every kind)";
       throw InvalidBodyError(i, "shape", os.str());
     }
     return kinds;

@@ -19,6 +19,8 @@ enum BodyStatus : std::uint8_t { active = 0, fixed = 1, removed = 2 };
 // fixed, except planes, which are always fixed.
 enum ShapeKind : std::uint8_t { sphere = 0, box = 1, plane = 2, capsule = 3, compound = 4 };
 inline constexpr int shape_kinds = 5;
+// Each kind's name, by its value (for messages).
+inline constexpr const char* shape_names[shape_kinds] = {"sphere", "box", "plane", "capsule", "compound"};
 
 // Number of shape parameters per body (rows of Bodies::shape_param):
 //   sphere:  (radius, 0, 0, 0)

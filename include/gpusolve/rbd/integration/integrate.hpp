@@ -86,8 +86,7 @@ struct Move {
     const math::Vector3<T> L_body(I * w0_body);
     const math::Vector3<T> L(before * L_body);  // world frame: what the turn keeps
     const math::Matrix3x3<T> Iinv(math::Matrix3x3Global<T>(b.inv_inertia_body, off.m9, i));
-    const math::Vector3<T> w_guess = velocity_of_momentum(math::Quaternion<T>(math::integrate_orientation(q0, w0, dt)),
-                                                          Iinv, L);
+    const math::Vector3<T> w_guess = velocity_of_momentum(math::integrate_orientation(q0, w0, dt), Iinv, L);
     const math::Vector3<T> w_mean(T(0.5) * (w0 + w_guess));
     const math::Quaternion<T> q1 = math::integrate_orientation(q0, w_mean, dt);
     q = q1;
