@@ -5,7 +5,7 @@
 // Run: gpusolve_bench_atlas --scene pile|cubes|mixed|column|pyramid|stack|hopper [--n 10000,100000] [--ratios 1,100,1000]
 //        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,tol0.02,check10]
 //        [--margins 0.1]
-//        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--csv FILE]
+//        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, docs/piles.md), N spheres dropped into
 //         an open box; 1 200 steps for N <= 10 000, else 900 (docs/piles.md's counts).
@@ -31,6 +31,8 @@
 // --warm: SolverSettings::warm_start (default: the library's). --backend cpu
 // runs the same World on device::cpu (no GPU needed; host clock, OpenMP
 // threads): its accuracy columns are the method's, its times only the host's.
+// --phases: World::set_phase_timing on; the medians of detection, solve and
+// integration over the last third go to the ms_detection.. columns (0 without).
 // Measured, over the last third of the steps: time per whole step (detection,
 // solve, integration and World's statistics, what a user's loop pays) with CUDA
 // events around World::step, mean and median; mean iterations; the median final
@@ -78,6 +80,7 @@ struct Options {
   std::string backend = "gpu";
   std::vector<double> dts{0.0025};
   long steps = 0;  // 0: the scene's
+  bool phases = false;
   std::string csv;
 };
 
@@ -87,6 +90,7 @@ struct Run {
   double ratio = 1, margin = 0, dt = 0, warm = 0;
   long steps = 0;
   bool gpu = true;
+  bool phases = false;  // World::set_phase_timing: medians of each phase over the last third
 };
 
 struct Result {
@@ -99,6 +103,7 @@ struct Result {
   // read -1.6e-5).
   double state_penetration = 0;
   std::size_t flagged = 0;
+  double ms_detection = 0, ms_solve = 0, ms_integration = 0;  // medians; 0 without --phases
   bool fell = false;  // a column's top sphere left its place by a radius; a tower's box moved 1% of its size
 };
 
@@ -197,8 +202,9 @@ Result run(const Run& r) {
   const rbd::BodySet<T> start = set;
   const SolverSettings<T> s = settings_for(r);
   rbd::World<Dev, T, rbd::ConeFriction, Method> world(set, s);
+  world.set_phase_timing(r.phases);
   StepTimer<Dev> timer;
-  std::vector<double> ms, residuals;
+  std::vector<double> ms, residuals, detection, solve, integration;
   Result out;
   double iterations = 0;
   const long last_third = r.steps - r.steps / 3;
@@ -211,6 +217,9 @@ Result run(const Run& r) {
     if (step >= last_third) {
       ms.push_back(t);
       residuals.push_back(double(st.solver.residual()));
+      detection.push_back(1e3 * st.time_detection);
+      solve.push_back(1e3 * st.time_solve);
+      integration.push_back(1e3 * st.time_integration);
       iterations += double(st.solver.total_iterations);
     }
     if (step >= r.steps - 200) out.penetration = std::max(out.penetration, double(st.max_penetration));
@@ -244,6 +253,9 @@ Result run(const Run& r) {
   out.ms_mean = sum / double(ms.size());
   out.ms_median = spread(ms).median;
   out.residual = spread(residuals).median;
+  out.ms_detection = spread(detection).median;
+  out.ms_solve = spread(solve).median;
+  out.ms_integration = spread(integration).median;
   out.iterations = iterations / double(ms.size());
   return out;
 }
@@ -270,7 +282,7 @@ int main(int argc, char** argv) {
   Options o;
   const char* usage =
       "--scene pile|cubes|mixed|column|pyramid|stack|field|slabs|hopper [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
-      "[--warm LIST] [--dts LIST] [--steps N] [--backend gpu|cpu] [--csv FILE]";
+      "[--warm LIST] [--dts LIST] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--scene") o.scene = option_value(argc, argv, i);
@@ -283,6 +295,7 @@ int main(int argc, char** argv) {
     else if (a == "--backend") o.backend = option_value(argc, argv, i);
     else if (a == "--dts") o.dts = parse_list<double>(option_value(argc, argv, i));
     else if (a == "--steps") o.steps = std::stol(option_value(argc, argv, i));
+    else if (a == "--phases") o.phases = true;
     else if (a == "--csv") o.csv = option_value(argc, argv, i);
     else usage_exit(argv[0], usage, a);
   }
@@ -307,7 +320,7 @@ int main(int argc, char** argv) {
         o.csv,
         "scene,n,mass_ratio,method,budget,margin,warm_start,dt,steps,ms_per_step_mean,ms_per_step_median,contacts,colours,"
         "max_penetration,residual_median,iterations_mean,capped_steps,diverged_steps,kinetic_energy,height,drift,verdict,"
-        "state_penetration,flagged_steps,gpu");
+        "state_penetration,flagged_steps,ms_detection,ms_solve,ms_integration,gpu");
     const std::vector<double> ratios = o.scene == "column" ? o.ratios : std::vector<double>{1};
     const bool is_tower = tower(o.scene);
     const std::size_t scene_n = o.scene == "column"   ? 10
@@ -323,7 +336,7 @@ int main(int argc, char** argv) {
             for (double warm : o.warm)
             for (const auto& method : o.methods)
               for (const auto& budget : o.budgets) {
-                Run r{o.scene, method, budget, n, ratio, margin, dt, warm, o.steps, o.backend == "gpu"};
+                Run r{o.scene, method, budget, n, ratio, margin, dt, warm, o.steps, o.backend == "gpu", o.phases};
                 if (r.steps == 0)
                   r.steps = o.scene == "column"                        ? 2000
                             : o.scene == "hopper"                      ? 600
@@ -343,13 +356,16 @@ int main(int argc, char** argv) {
                             x.ms_mean, x.ms_median, 100 * x.penetration, 100 * x.state_penetration, x.flagged,
                             x.residual, x.iterations, x.contacts, x.colours, x.capped, x.diverged, x.drift,
                             verdict(r, x));
+                if (r.phases)
+                  std::printf("    phases (medians): detection %.3f ms, solve %.3f ms, integration %.3f ms\n",
+                              x.ms_detection, x.ms_solve, x.ms_integration);
                 std::fflush(stdout);
                 if (csv)
-                  std::fprintf(csv, "%s,%zu,%g,%s,%s,%g,%g,%g,%ld,%.4f,%.4f,%zu,%zu,%.6g,%.4g,%.2f,%zu,%zu,%.6g,%.4f,%.5f,%s,%.6g,%zu,%s\n",
+                  std::fprintf(csv, "%s,%zu,%g,%s,%s,%g,%g,%g,%ld,%.4f,%.4f,%zu,%zu,%.6g,%.4g,%.2f,%zu,%zu,%.6g,%.4f,%.5f,%s,%.6g,%zu,%.4f,%.4f,%.4f,%s\n",
                                r.scene.c_str(), n, ratio, method.c_str(), budget.c_str(), r.margin, r.warm, dt, r.steps,
                                x.ms_mean, x.ms_median, x.contacts, x.colours, x.penetration, x.residual, x.iterations,
                                x.capped, x.diverged, x.kinetic, x.height, x.drift, verdict(r, x), x.state_penetration,
-                               x.flagged, gpu.c_str());
+                               x.flagged, x.ms_detection, x.ms_solve, x.ms_integration, gpu.c_str());
               }
     if (csv) std::fclose(csv);
   } catch (const std::exception& e) {
