@@ -35,6 +35,48 @@ PlacedShape<float> random_shape(ShapeKind k, std::mt19937& gen) {
   return s;
 }
 
+using Found = std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>>;  // a, b, feature
+
+// Every contact point of the bodies by the shape-pair table over all pairs, as
+// (a, b, feature), sorted. The grid's cell is the largest reach of a moving
+// body; a fixed body beyond it is an obstacle, whose contacts name the moving body first.
+template <class View>
+Found brute_force_contacts(const BodySet<float>& s, const View& v, float margin) {
+  float cell = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s[i].status == active) cell = std::max(cell, 2 * v.radius[i] + margin);
+  auto obstacle = [&](std::size_t i) { return s[i].shape == plane || 2 * v.radius[i] + margin > cell; };
+  Found expected;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (std::size_t j = 0; j < s.size(); ++j) {
+      if (i == j || s[i].status == removed || s[j].status == removed) continue;
+      if (s[i].status != active && s[j].status != active) continue;
+      const bool grid_pair = !obstacle(i) && !obstacle(j);
+      if (grid_pair ? j < i : obstacle(i)) continue;  // each pair once, as detection orders it
+      for_each_manifold<all_shapes, float>(v, i, j, margin, false, [&](const Manifold<float>& mf) {
+        for (int p = 0; p < mf.count; ++p) expected.emplace_back(std::uint32_t(i), std::uint32_t(j), mf.points[p].feature);
+      });
+    }
+  std::sort(expected.begin(), expected.end());
+  return expected;
+}
+
+// Detection's contacts as (a, b, feature), sorted, after checking that they
+// come sorted by (a, b) and within the margin. Detection lists a pair's points
+// in its manifold's order; they compare as sets within a pair.
+template <class C>
+Found detected_contacts(const C& c, std::size_t n, float margin) {
+  Found found;
+  for (std::size_t k = 0; k < n; ++k) found.emplace_back(c.a(k), c.b(k), c.feature(k));
+  for (std::size_t k = 1; k < n; ++k) {
+    INFO("contact " << k);
+    REQUIRE(std::make_pair(c.a(k - 1), c.b(k - 1)) <= std::make_pair(c.a(k), c.b(k)));
+    CHECK(c.phi0(k) < margin);
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
 }  // namespace
 
 TEST_CASE("every shape pair of the table equals its reversed pair with the normal turned", "[collision][shapes]") {
@@ -98,35 +140,8 @@ TEST_CASE("contacts of a mixed heap equal a brute-force search through the shape
   Contacts<device::cpu, float, Frictionless> c;
   const std::size_t n = cd.detect(b, c, margin);
 
-  // The grid's cell: the largest reach of a moving body; a fixed body beyond it
-  // is an obstacle, whose contacts name the moving body first.
-  const auto v = b.view();
-  float cell = 0;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if (s[i].status == active) cell = std::max(cell, 2 * v.radius[i] + margin);
-  auto obstacle = [&](std::size_t i) { return s[i].shape == plane || 2 * v.radius[i] + margin > cell; };
-  std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> expected;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    for (std::size_t j = 0; j < s.size(); ++j) {
-      if (i == j || s[i].status == removed || s[j].status == removed) continue;
-      if (s[i].status != active && s[j].status != active) continue;
-      const bool grid_pair = !obstacle(i) && !obstacle(j);
-      if (grid_pair ? j < i : obstacle(i)) continue;  // each pair once, as detection orders it
-      for_each_manifold<all_shapes, float>(v, i, j, margin, false, [&](const Manifold<float>& mf) {
-        for (int p = 0; p < mf.count; ++p) expected.emplace_back(std::uint32_t(i), std::uint32_t(j), mf.points[p].feature);
-      });
-    }
-  // Detection lists a pair's points in its manifold's order; compare as sets within a pair.
-  std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> found;
-  for (std::size_t k = 0; k < n; ++k) found.emplace_back(c.a(k), c.b(k), c.feature(k));
-  for (std::size_t k = 1; k < n; ++k) {
-    INFO("contact " << k);
-    REQUIRE(std::make_pair(c.a(k - 1), c.b(k - 1)) <= std::make_pair(c.a(k), c.b(k)));  // sorted by (a, b)
-    CHECK(c.phi0(k) < margin);
-  }
-  std::sort(expected.begin(), expected.end());
-  std::sort(found.begin(), found.end());
-  CHECK(found == expected);
+  const auto expected = brute_force_contacts(s, b.view(), margin);
+  CHECK(detected_contacts(c, n, margin) == expected);
   // Every pair of kinds is among them (plane-plane aside), compounds too.
   std::array<std::array<std::size_t, shape_kinds>, shape_kinds> kinds{};
   for (const auto& e : expected) {
@@ -138,4 +153,31 @@ TEST_CASE("contacts of a mixed heap equal a brute-force search through the shape
       INFO("kinds " << ka << ", " << kb << ": " << kinds[ka][kb] << " contacts");
       if (ka != plane || kb != plane) CHECK(kinds[ka][kb] > 0);
     }
+}
+
+TEST_CASE("a lattice of touching cubes, 13 candidate partners each, equals the brute-force search",
+          "[collision][shapes]") {
+  // Cubes of half extent 0.5 one apart: every face, edge and corner neighbour's
+  // bounding sphere comes within the margin, past the pair passes' first list
+  // (4 a body) and past the partners a body keeps (8), so the list grows and
+  // bodies walk twice. Slightly turned, so that edges and corners touch too.
+  BodySet<float> s;
+  s.add_plane({0.f, 0.f, 1.f}, 0.f);
+  for (int z = 0; z < 6; ++z)
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 6; ++x) {
+        const float qx = 0.01f * float((x + y) % 3), qz = 0.01f * float(z % 2);
+        s.add_box({float(x), float(y), 0.5f + float(z)}, {0.5f, 0.5f, 0.5f}, 1.f,
+                  {std::sqrt(1.f - qx * qx - qz * qz), qx, 0.f, qz});
+      }
+  const float margin = 0.05f;
+  BodyManager<device::cpu> m(s);
+  m.syncDevice();
+  CollisionDetection<device::cpu> cd;
+  Contacts<device::cpu, float, Frictionless> c;
+  const std::size_t n = cd.detect(m.device(), c, margin);
+  const Found expected = brute_force_contacts(s, m.device().view(), margin);
+  CHECK(expected.size() > 4 * s.size());
+  CHECK(detected_contacts(c, n, margin) == expected);
+  CHECK(cd.detect(m.device(), c, margin) == n);  // again, from the grown list
 }

@@ -255,6 +255,7 @@ class World {
       contacts_.resize(summary.contacts < contacts_.capacity() ? summary.contacts : contacts_.capacity());
       throw NonFiniteStateError(e.body(), e.field(), held);
     }
+    detection_.grow_for(summary);
     contacts_.resize(summary.contacts);
     unattended_.count_requeued(queued - held);
     advance_unattended(queued - held);

@@ -21,6 +21,8 @@
 #include "gpusolve/rbd/collision/broad_phase.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
 #include "gpusolve/rbd/collision/body_manifolds.hpp"
+#include "gpusolve/rbd/collision/kept_partners.hpp"
+#include "gpusolve/rbd/collision/pair_passes.hpp"
 #include "gpusolve/rbd/execution/device_algorithms.hpp"
 #include "gpusolve/rbd/execution/graph_replay.hpp"
 #include "gpusolve/container/ensure_size.hpp"
@@ -55,12 +57,11 @@ struct ListObstacles {
 };
 
 // The contact pairs of body i as body a: its grid neighbours j > i (a fixed
-// body only with moving ones) and, for a moving body, the obstacles, those
-// whose manifolds have points (gaps below the margin). visit(j, points) meets
-// them in the grid's order; manifolds(i, j, ...) are theirs (body_manifolds.hpp),
-// over the kinds in M. Between two spheres the gap comes from the grid's
-// packed copies (the same floats as the manifold's), so the walk loads
-// nothing more of j; where M holds spheres and planes only, no other pair is compiled in.
+// body only with moving ones) and, for a moving body, the obstacles.
+// candidates() lists those whose bounds meet; manifolds(i, j, ...) are a
+// pair's, over the kinds in M (body_manifolds.hpp); where M holds spheres and
+// planes only, no other pair is compiled in, and the walk itself finds the
+// pairs that touch (operator()).
 template <class View, class T, ShapeMask M>
 struct ContactWalk {
   View b;
@@ -101,96 +102,67 @@ struct ContactWalk {
     return count;
   }
 
+  // Whether moving body i's bounding sphere comes within the margin of
+  // obstacle j: of a plane's surface (or behind it), of a large body's sphere.
+  GPUSOLVE_HD bool near_obstacle(std::size_t i, std::uint32_t j) const {
+    const math::Vector3<T> x = math::load3<T>(b.pos, i);
+    if (b.shape[j] == plane)
+      return math::dot(math::Vector3<T>(b.shape_param(j, 0), b.shape_param(j, 1), b.shape_param(j, 2)), x) -
+                 b.shape_param(j, 3) <
+             b.radius[i] + margin;
+    const math::Vector3<T> d(x - math::load3<T>(b.pos, j));
+    const T reach = b.radius[i] + b.radius[j] + margin;
+    return math::dot(d, d) < reach * reach;
+  }
+
+  // Calls visit(j) for each candidate partner j of body i: the grid
+  // neighbours j > i whose bounding spheres come within the margin (a fixed
+  // body only with moving ones) and, for a moving body, the obstacles near
+  // it; the pairs whose manifolds the pair passes (pair_passes.hpp) compute.
   template <class F>
-  GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
+  GPUSOLVE_HD void candidates(std::size_t i, F&& visit) const {
     const GridGeometry<T> g(grid.cell, grid.mask);
     if (!g.holds(b, i, margin)) return;
     const bool active_a = b.status[i] == active;
-    const bool sphere_a = spheres_only || b.shape[i] == sphere;
+    grid(i, [&](std::uint32_t j, const GridSphere<T>&) {
+      if (active_a || b.status[j] == active) visit(j);
+    });
+    if (!active_a) return;
+    for (std::uint32_t k = 0; k < *obstacle_count; ++k)
+      if (near_obstacle(i, obstacles[k])) visit(obstacles[k]);
+  }
+
+  // Calls visit(j) for each partner j of sphere i that it meets within the
+  // margin, in the order of candidates(): the one-pass walk of a detection
+  // whose bodies are spheres and planes (spheres_only); every other detection
+  // goes through the pair passes. Between two spheres the gap comes from the
+  // grid's packed copies (the same floats as the manifold's).
+  template <class F>
+  GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
+    static_assert(spheres_only, "ContactWalk: bodies other than spheres go through the pair passes");
+    const GridGeometry<T> g(grid.cell, grid.mask);
+    if (!g.holds(b, i, margin)) return;
+    const bool active_a = b.status[i] == active;
     const GridSphere<T> me = grid_sphere<View, T>(b, i);
     const math::Vector3<T> pa(me.x[0], me.x[1], me.x[2]);
     grid(i, [&](std::uint32_t j, const GridSphere<T>& o) {
       if (!active_a && b.status[j] != active) return;
-      if (sphere_a && (spheres_only || b.shape[j] == sphere)) {
-        if (sphere_sphere(pa, me.r, math::Vector3<T>(o.x[0], o.x[1], o.x[2]), o.r).points[0].gap < margin)
-          visit(j, 1);
-      } else if (const std::uint32_t k = points(i, j)) {
-        visit(j, k);
-      }
+      if (sphere_sphere(pa, me.r, math::Vector3<T>(o.x[0], o.x[1], o.x[2]), o.r).points[0].gap < margin) visit(j);
     });
     if (!active_a) return;
     for (std::uint32_t k = 0; k < *obstacle_count; ++k)
-      if (const std::uint32_t p = points(i, obstacles[k])) visit(obstacles[k], p);
+      if (points(i, obstacles[k]) > 0) visit(obstacles[k]);
   }
 };
 
-// The pairs a count pass keeps per body (the b bodies, sorted), so that the
-// write pass reads them instead of walking the grid a second time. An equal
-// sphere touches at most 12 others, about half of them with a larger index,
-// and a few walls; a body with more pairs (a large one among small ones, or
-// one in a corner of a pile) walks again.
-inline constexpr std::uint32_t kept_contacts = 8;
-
-// Insertion sort of a body's few partners, in place.
-template <class Get, class Set>
-GPUSOLVE_HD void sort_few(std::uint32_t first, std::uint32_t last, Get get, Set set) {
-  for (std::uint32_t p = first + 1; p < last; ++p) {
-    const std::uint32_t j = get(p);
-    std::uint32_t q = p;
-    for (; q > first && get(q - 1) > j; --q) set(q, get(q - 1));
-    set(q, j);
-  }
-}
-
-// Inserts j into the sorted found[0, c) (c < kept_contacts). found is indexed
-// only in unrolled loops, so that it stays in registers: a position p takes
-// its own body while that is below j, j where the bodies below end, and its
-// left neighbour's after.
-GPUSOLVE_HD inline void insert_sorted(std::uint32_t (&found)[kept_contacts], std::uint32_t c, std::uint32_t j) {
-  GPUSOLVE_UNROLL
-  for (int p = int(kept_contacts) - 1; p >= 0; --p) {
-    const std::uint32_t up = std::uint32_t(p);
-    if (up > c) continue;
-    const bool stays = up < c && found[p] < j;
-    const bool here = p == 0 || found[p > 0 ? p - 1 : 0] < j;
-    found[p] = stays ? found[p] : here ? j : found[p > 0 ? p - 1 : 0];
-  }
-}
-
-// Counts body i's contacts (count[i]) and its partners (pairs[i], where
-// partners may have more than one point each) and keeps the first
-// kept_contacts partners, sorted, at kept[c * n + i] (c = 0, 1, ...: a warp's
-// stores are contiguous).
-template <class Walk>
-struct CountContacts {
-  Walk walk;
-  std::uint32_t* count;
-  std::uint32_t* pairs;  // unused where every pair is one sphere contact (Walk::spheres_only)
-  std::uint32_t* kept;
-  std::size_t n;
-  GPUSOLVE_HD void operator()(std::size_t i) const {
-    std::uint32_t found[kept_contacts] = {};
-    std::uint32_t partners = 0, c = 0;
-    walk(i, [&](std::uint32_t j, std::uint32_t points) {
-      if (partners < kept_contacts) insert_sorted(found, partners, j);
-      ++partners;
-      c += points;
-    });
-    GPUSOLVE_UNROLL
-    for (std::uint32_t p = 0; p < kept_contacts; ++p)
-      if (p < partners) kept[p * n + i] = found[p];
-    count[i] = c;
-    if constexpr (!Walk::spheres_only) pairs[i] = partners;
-  }
-};
-
-// What the host reads once per detection: the count it must size for, and
+// What the host reads once per detection: the counts it must size for, and
 // the cell size (not finite: a radius or the margin is not finite).
 template <class T>
 struct DetectionSummary {
   std::uint32_t contacts;
   T cell;
   std::uint64_t non_finite;  // NonFiniteKey's minimum: the first body with a NaN or inf in its state
+  std::uint32_t candidates = 0;  // candidate pairs listed (the pair passes; 0 where spheres walk alone)
 };
 
 // Throws what makes a detection's contacts unusable: NonFiniteStateError
@@ -225,7 +197,8 @@ struct BodyScanOp {
 };
 
 // Writes the summary, and sets *hold (where there is one) when the step must
-// not go on: more contacts than `capacity`, or what require_usable throws for.
+// not go on: more contacts or candidate pairs than their capacities, or what
+// require_usable throws for.
 template <class T>
 struct Summarize {
   const std::uint32_t* contacts;
@@ -233,102 +206,60 @@ struct Summarize {
   DetectionSummary<T>* out;
   std::uint32_t* hold;
   std::size_t capacity;
+  const std::uint32_t* candidates = nullptr;  // the pair passes' count, or none
+  std::size_t candidate_capacity = 0;
   GPUSOLVE_HD void operator()(std::size_t) const {
-    const DetectionSummary<T> s{*contacts, scan->cell, scan->non_finite};
+    const DetectionSummary<T> s{*contacts, scan->cell, scan->non_finite, candidates ? *candidates : 0u};
     *out = s;
-    if (hold != nullptr && (s.contacts > capacity || s.non_finite != ~std::uint64_t(0) ||
-                            !(s.cell <= std::numeric_limits<T>::max())))
+    if (hold != nullptr && (s.contacts > capacity || s.candidates > candidate_capacity ||
+                            s.non_finite != ~std::uint64_t(0) || !(s.cell <= std::numeric_limits<T>::max())))
       *hold = 1;
   }
 };
 
-// Writes body i's contacts at [offset[i] - count[i], offset[i]) in increasing
-// order of body b, each pair's manifold points in their order, unless that
+// Writes sphere i's contacts at [offset[i] - count[i], offset[i]) in
+// increasing order of body b (spheres_only: one point per pair), unless that
 // passes the contacts' capacity (their view's size): the caller grows and
-// repeats. The partners come from the count pass's kept list, or, for a body
-// with more, from a second walk whose partners are listed in the b column and
-// sorted in place; then the points go in from the last pair to the first, so
-// that no partner is overwritten before it is read. Where a pair's manifold
-// gives a different number of points than it did in the count pass (the two
-// passes compile the same arithmetic separately), the range still fills exactly:
-// extra points are dropped, missing ones are inert (pad). Body 0's
+// repeats. The partners come from the count pass's kept list or, for a body
+// with more, from a second walk, listed in the b column and sorted in place.
+// The two passes compile the same arithmetic separately, so the range still
+// fills exactly: a pair no longer found gets an inert contact. Body 0's
 // thread also writes the summary the host reads.
 template <class Walk, class ContactView, class T>
 struct WriteContacts {
-  Walk walk;
+  PointWriter<Walk, ContactView, T> writer;
   const std::uint32_t* offset;  // inclusive scan of the counts
   const std::uint32_t* count;
-  const std::uint32_t* pairs;   // Walk::spheres_only: the counts themselves
   const std::uint32_t* kept;
   std::size_t n;
-  ContactView contacts;
-  T mu;
   Summarize<T> summarize;
 
   GPUSOLVE_HD void operator()(std::size_t i) const {
     if (i == 0) summarize(0);
-    if (offset[i] > contacts.size()) return;
+    if (offset[i] > writer.contacts.size()) return;
     const std::uint32_t first = offset[i] - count[i], last = offset[i];
-    const std::uint32_t partners = Walk::spheres_only ? count[i] : pairs[i];
-    if constexpr (Walk::spheres_only) {  // one point per pair: no manifold loop
-      if (partners <= kept_contacts) {
-        for (std::uint32_t p = 0; p < partners; ++p) write_one(first + p, i, kept[p * n + i]);
-        return;
-      }
-    }
-    if (partners <= kept_contacts) {
-      std::uint32_t o = first;
-      for (std::uint32_t p = 0; p < partners; ++p) {
-        const std::uint32_t j = kept[p * n + i];
-        math::Vector3<T> normal;
-        walk.manifolds(i, j, false, [&](const Manifold<T>& m) {
-          for (int k = 0; k < m.count && o < last; ++k) write(o++, i, j, m, k);
-          normal = m.n;
-        });
-        if (p + 1 == partners) pad(o, last, i, j, normal);
-      }
+    if (count[i] <= kept_contacts) {
+      for (std::uint32_t o = first; o < last; ++o) write_one(o, i, kept[(o - first) * n + i]);
       return;
     }
-    std::uint32_t o = first;
-    walk(i, [&](std::uint32_t j, std::uint32_t) { contacts.b[o++] = j; });
-    sort_few(first, first + partners, [&](std::uint32_t p) { return std::uint32_t(contacts.b[p]); },
-             [&](std::uint32_t p, std::uint32_t j) { contacts.b[p] = j; });
-    std::uint32_t end = last;  // the points of pairs p.. go to [end, last)
-    for (std::uint32_t p = partners; p-- > 0;) {
-      const std::uint32_t j = contacts.b[first + p];
-      math::Vector3<T> normal;
-      walk.manifolds(i, j, true, [&](const Manifold<T>& m) {
-        for (int k = m.count; k-- > 0 && end > first + p;) write(--end, i, j, m, k);
-        normal = m.n;
-      });
-      if (p == 0) pad(first, end, i, j, normal);
-    }
+    const auto& c = writer.contacts;
+    std::uint32_t found = first;
+    writer.walk(i, [&](std::uint32_t j) {
+      if (found < last) c.b[found++] = j;
+    });
+    sort_few(first, found, [&](std::uint32_t p) { return std::uint32_t(c.b[p]); },
+             [&](std::uint32_t p, std::uint32_t j) { c.b[p] = j; });
+    for (std::uint32_t o = first; o < found; ++o) write_one(o, i, c.b[o]);
+    if (found < last) writer.pad(found, last, i, kept[i], math::Vector3<T>());
   }
 
   // A sphere pair's one point (or an inert contact where it is no longer found).
   GPUSOLVE_HD void write_one(std::uint32_t o, std::size_t i, std::uint32_t j) const {
-    const Manifold<T> m = walk.sphere_manifold(i, j);
+    const Manifold<T> m = writer.walk.sphere_manifold(i, j);
     if (m.count > 0)
-      write(o, i, j, m, 0);
+      writer.write(o, i, j, m, 0);
     else
-      pad(o, o + 1, i, j, m.n);
-  }
-
-  GPUSOLVE_HD void write(std::uint32_t o, std::size_t i, std::uint32_t j, const Manifold<T>& m, int k) const {
-    const ManifoldPoint<T>& q = m.points[k];
-    const math::Vector3<T> pa(walk.b.pos(i, 0), walk.b.pos(i, 1), walk.b.pos(i, 2));
-    const math::Vector3<T> pb(walk.b.pos(j, 0), walk.b.pos(j, 1), walk.b.pos(j, 2));
-    contacts.set(o, std::uint32_t(i), j, m.n, math::Vector3<T>(q.p - pa), math::Vector3<T>(q.p - pb), q.gap, mu,
-                 q.feature);
-  }
-  // Fills [from, to) with inert contacts of the pair (i, j), where the write
-  // pass found fewer points than the count pass.
-  GPUSOLVE_HD void pad(std::uint32_t from, std::uint32_t to, std::size_t i, std::uint32_t j,
-                       const math::Vector3<T>& n) const {
-    const math::Vector3<T> zero, up(T(0), T(0), T(1));
-    const bool unit = math::dot(n, n) > T(0.5);
-    const T apart = walk.margin + 2 * (walk.b.radius[i] + walk.b.radius[j]);
-    for (std::uint32_t o = from; o < to; ++o) contacts.set(o, std::uint32_t(i), j, unit ? n : up, zero, zero, apart, mu, inert_feature);
+      writer.pad(o, o + 1, i, j, m.n);
   }
 };
 
@@ -377,6 +308,7 @@ class CollisionDetection {
       queue_detection(bodies, contacts, margin, mu, nullptr, stream);
       const detail::DetectionSummary<T> s = summary(stream);
       detail::require_usable(s);
+      if (grow_for(s)) continue;  // the candidate list was short: the contacts' count is not yet known
       if (s.contacts <= contacts.capacity()) {
         contacts.resize(s.contacts);
         return s.contacts;
@@ -400,6 +332,17 @@ class CollisionDetection {
     if (empty_) return;
     queue_detection(bodies, contacts, margin, mu, hold, stream);
     contacts.count_on_device(&summary_.data()->contacts, expected);
+  }
+
+  // Grows the candidate list where a detection's summary says it was short
+  // (a held unattended step must grow it before it is queued again); true
+  // where it grew.
+  bool grow_for(const detail::DetectionSummary<T>& s) {
+    if (s.candidates <= candidate_a_.size_x()) return false;
+    for (D1<std::uint32_t>* v : {&candidate_a_, &candidate_b_, &pair_points_, &point_offset_})
+      gpusolve::detail::ensure_size(*v, s.candidates);
+    sized_for_ = 0;  // a kept graph points to the old stores
+    return true;
   }
 
   // The summary of the last detection; waits for it.
@@ -429,11 +372,15 @@ class CollisionDetection {
     gpusolve::detail::ensure_size(obstacle_count_, 1);
     gpusolve::detail::ensure_size(count_, n);
     gpusolve::detail::ensure_size(offset_, n);
-    gpusolve::detail::ensure_size(pairs_, n);
     gpusolve::detail::ensure_size(kept_, detail::kept_contacts * n);
     gpusolve::detail::ensure_size(summary_, 1);
     gpusolve::detail::ensure_size(scan_, 1);
     if (contacts.capacity() < 4 * n) contacts.resize(4 * n);
+    if ((bodies.shapes & ~spheres_and_planes) != 0 && candidate_a_.size_x() < 4 * n) {  // the pair passes run
+      for (D1<std::uint32_t>* v : {&candidate_a_, &candidate_b_, &pair_points_, &point_offset_})
+        gpusolve::detail::ensure_size(*v, 4 * n);
+      sized_for_ = 0;
+    }
     return true;
   }
 
@@ -481,17 +428,54 @@ class CollisionDetection {
            detail::ListObstacles<View, T>{b, grid.cell, margin, obstacles_.data(), obstacle_count_.data()}, stream);
     using Walk = detail::ContactWalk<View, T, M>;
     const Walk walk{b, margin, grid, obstacles_.data(), obstacle_count_.data()};
-    launch(dev, n, detail::CountContacts<Walk>{walk, count_.data(), pairs_.data(), kept_.data(), n}, stream);
+    const detail::PointWriter<Walk, CView, T> writer{walk, c, mu};
+    if constexpr (Walk::spheres_only) {
+      launch(dev, n, detail::CountPartners<Walk>{walk, count_.data(), kept_.data(), n}, stream);
+      algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
+      launch(dev, n,
+             detail::WriteContacts<Walk, CView, T>{writer, offset_.data(), count_.data(), kept_.data(), n,
+                                                   {offset_.data() + (n - 1), scan_.data(), summary_.data(), hold,
+                                                    c.bound()}},
+             stream);
+    } else {
+      queue_pair_passes(walk, writer, n, hold, c.bound(), stream);
+    }
+  }
+
+  // Candidates per body (the count pass over CandidateWalk, then a scan),
+  // listed per pair, then each pair's points counted, scanned and written by
+  // a thread of its own. The passes run over the candidate list's capacity,
+  // so no count comes back to the host between them.
+  template <class Walk, class Writer>
+  void queue_pair_passes(const Walk& walk, const Writer& writer, std::size_t n, std::uint32_t* hold,
+                         std::size_t contact_capacity, stream_t stream) {
+    const Device dev{};
+    const std::size_t capacity = candidate_a_.size_x();
+    const std::uint32_t* candidates = offset_.data() + (n - 1);
+    launch(dev, n,
+           detail::CountPartners<detail::CandidateWalk<Walk>>{{walk}, count_.data(), kept_.data(), n},
+           stream);
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
     launch(dev, n,
-           detail::WriteContacts<Walk, CView, T>{walk, offset_.data(), count_.data(), pairs_.data(), kept_.data(), n, c, mu,
-                                                 {offset_.data() + (n - 1), scan_.data(), summary_.data(), hold,
-                                                  c.bound()}},
+           detail::WriteCandidates<Walk>{walk, offset_.data(), count_.data(), kept_.data(), n, candidate_a_.data(),
+                                         candidate_b_.data(), capacity},
+           stream);
+    launch(dev, capacity,
+           detail::CountPairPoints<Walk>{walk, candidate_a_.data(), candidate_b_.data(), candidates, capacity,
+                                         pair_points_.data()},
+           stream);
+    algorithms_.inclusive_sum(pair_points_.data(), point_offset_.data(), capacity, stream);
+    launch(dev, capacity,
+           detail::WritePairContacts<Writer, detail::Summarize<T>>{
+               writer, candidate_a_.data(), candidate_b_.data(), point_offset_.data(), pair_points_.data(),
+               {point_offset_.data() + (capacity - 1), scan_.data(), summary_.data(), hold, contact_capacity,
+                candidates, capacity}},
            stream);
   }
 
   UniformGrid<Device, T> grid_;
-  D1<std::uint32_t> obstacles_, obstacle_count_, count_, offset_, pairs_, kept_;
+  D1<std::uint32_t> obstacles_, obstacle_count_, count_, offset_, kept_;
+  D1<std::uint32_t> candidate_a_, candidate_b_, pair_points_, point_offset_;  // the pair passes' list
   D1<detail::BodyScan<T>> scan_;
   D1<detail::DetectionSummary<T>> summary_;
   detail::DeviceAlgorithms<Device> algorithms_;

@@ -1,0 +1,127 @@
+// The narrow phase one thread per candidate pair: a body's walk lists the
+// partners whose bounds come within the margin, and each pair's manifolds are
+// then counted and written by a thread of its own, so a box pile's costly
+// shape pairs spread over the GPU instead of queueing behind one thread per
+// body (docs/detection.md has the measurements).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/math.hpp"
+#include "gpusolve/rbd/collision/kept_partners.hpp"
+#include "gpusolve/rbd/collision/manifold.hpp"
+
+namespace gpusolve::rbd::detail {
+
+// Writes manifold points as contacts of the pair (i, j), and inert contacts
+// where a pass finds fewer points than its count said.
+template <class Walk, class ContactView, class T>
+struct PointWriter {
+  Walk walk;
+  ContactView contacts;
+  T mu;
+
+  GPUSOLVE_HD void write(std::uint32_t o, std::size_t i, std::uint32_t j, const Manifold<T>& m, int k) const {
+    const ManifoldPoint<T>& q = m.points[k];
+    const math::Vector3<T> pa(walk.b.pos(i, 0), walk.b.pos(i, 1), walk.b.pos(i, 2));
+    const math::Vector3<T> pb(walk.b.pos(j, 0), walk.b.pos(j, 1), walk.b.pos(j, 2));
+    contacts.set(o, std::uint32_t(i), j, m.n, math::Vector3<T>(q.p - pa), math::Vector3<T>(q.p - pb), q.gap, mu,
+                 q.feature);
+  }
+  // Fills [from, to) with inert contacts of the pair (i, j), apart by more
+  // than the margin, along n where it is a unit vector.
+  GPUSOLVE_HD void pad(std::uint32_t from, std::uint32_t to, std::size_t i, std::uint32_t j,
+                       const math::Vector3<T>& n) const {
+    const math::Vector3<T> zero, up(T(0), T(0), T(1));
+    const bool unit = math::dot(n, n) > T(0.5);
+    const T apart = walk.margin + 2 * (walk.b.radius[i] + walk.b.radius[j]);
+    for (std::uint32_t o = from; o < to; ++o)
+      contacts.set(o, std::uint32_t(i), j, unit ? n : up, zero, zero, apart, mu, inert_feature);
+  }
+  // Writes the points of the pair (i, j) at [first, last), exactly filling it.
+  GPUSOLVE_HD void pair(std::uint32_t first, std::uint32_t last, std::size_t i, std::uint32_t j) const {
+    std::uint32_t o = first;
+    math::Vector3<T> normal;
+    walk.manifolds(i, j, false, [&](const Manifold<T>& m) {
+      for (int k = 0; k < m.count && o < last; ++k) write(o++, i, j, m, k);
+      normal = m.n;
+    });
+    pad(o, last, i, j, normal);
+  }
+};
+
+// A ContactWalk's candidate pairs as a walk (CountPartners counts and keeps them).
+template <class Walk>
+struct CandidateWalk {
+  Walk walk;
+  template <class F>
+  GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
+    walk.candidates(i, visit);
+  }
+};
+
+// Writes body i's candidate partners (body i as a, the partners as b, sorted)
+// at [offset[i] - count[i], offset[i]) of the candidate list, from the count
+// pass's kept list or, for a body with more, from a second walk sorted in
+// place. A body whose range passes the list's capacity writes nothing: the
+// caller grows the list and repeats.
+template <class Walk>
+struct WriteCandidates {
+  Walk walk;
+  const std::uint32_t* offset;  // inclusive scan of the candidate counts
+  const std::uint32_t* count;
+  const std::uint32_t* kept;
+  std::size_t n;
+  std::uint32_t *a, *b;
+  std::size_t capacity;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    const std::uint32_t first = offset[i] - count[i], last = offset[i];
+    if (last > capacity) return;
+    for (std::uint32_t p = first; p < last; ++p) a[p] = std::uint32_t(i);
+    if (count[i] <= kept_contacts) {
+      for (std::uint32_t p = 0; p < count[i]; ++p) b[first + p] = kept[p * n + i];
+      return;
+    }
+    std::uint32_t o = first;
+    walk.candidates(i, [&](std::uint32_t j) {
+      if (o < last) b[o++] = j;
+    });
+    sort_few(first, o, [&](std::uint32_t p) { return b[p]; }, [&](std::uint32_t p, std::uint32_t j) { b[p] = j; });
+    for (; o < last; ++o) b[o] = std::uint32_t(i);  // fewer than counted (the passes compile apart): no pair
+  }
+};
+
+// The number of contact points of candidate pair k (0 past the candidates
+// listed: the pass runs over the list's whole capacity, its count stays on the device).
+template <class Walk>
+struct CountPairPoints {
+  Walk walk;
+  const std::uint32_t *a, *b;
+  const std::uint32_t* candidates;  // how many are listed
+  std::size_t capacity;
+  std::uint32_t* points;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    points[k] = k < *candidates && *candidates <= capacity && a[k] != b[k] ? walk.points(a[k], b[k]) : 0u;
+  }
+};
+
+// Writes candidate pair k's points at [offset[k] - points[k], offset[k]),
+// unless that passes the contacts' capacity (their view's size): the caller
+// grows and repeats. Pair 0's thread also writes the summary the host reads.
+template <class Writer, class Summary>
+struct WritePairContacts {
+  Writer writer;
+  const std::uint32_t *a, *b;
+  const std::uint32_t* offset;  // inclusive scan of the points
+  const std::uint32_t* points;
+  Summary summarize;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    if (k == 0) summarize(0);
+    if (points[k] == 0 || offset[k] > writer.contacts.size()) return;
+    writer.pair(offset[k] - points[k], offset[k], a[k], b[k]);
+  }
+};
+
+}  // namespace gpusolve::rbd::detail
