@@ -3,7 +3,7 @@
 // penetration and the LCP residual it bought, and whether each step converged.
 //
 // Run: gpusolve_bench_atlas --scene pile|cubes|mixed|column|pyramid|stack|hopper [--n 10000,100000] [--ratios 1,100,1000]
-//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,tol0.02,check10]
+//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,s4x5,tol0.02,check10]
 //        [--margins 0.1]
 //        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]
 //
@@ -26,7 +26,8 @@
 // cap and residual checks as shipped); "itK" runs exactly K iterations per step,
 // the residual measured once after the last; "tolX" iterates to tolerance X
 // (cap 2 000, checked every 10); "checkK" is the defaults with the residual
-// checked every K iterations. Every run: the cone model, friction 0.5 (the
+// checked every K iterations; "sSxK" is S substeps of exactly K iterations each
+// (the substepping method; the others run S K iterations). Every run: the cone model, friction 0.5 (the
 // hopper: 0.1).
 // --warm: SolverSettings::warm_start (default: the library's). --backend cpu
 // runs the same World on device::cpu (no GPU needed; host clock, OpenMP
@@ -128,10 +129,15 @@ SolverSettings<T> settings_for(const Run& r) {
     s.tolerance = T(std::stod(r.budget.substr(3)));
     s.max_iterations = 2000;
     s.check_every = 10;
+  } else if (r.budget.rfind("s", 0) == 0 && r.budget.find('x') != std::string::npos) {
+    s.substeps = std::stoul(r.budget.substr(1));
+    s.max_iterations = s.substeps * std::stoul(r.budget.substr(r.budget.find('x') + 1));
+    s.check_every = s.max_iterations;
+    s.tolerance = std::numeric_limits<T>::min();
   } else if (r.budget.rfind("check", 0) == 0) {
     s.check_every = std::stoul(r.budget.substr(5));
   } else if (r.budget != "default") {
-    throw InvalidArgumentError("atlas: unknown budget '" + r.budget + "' (default, itK, tolX or checkK)");
+    throw InvalidArgumentError("atlas: unknown budget '" + r.budget + "' (default, itK, sSxK, tolX or checkK)");
   }
   return s;
 }
