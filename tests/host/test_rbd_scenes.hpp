@@ -17,6 +17,12 @@ inline constexpr double g = 9.81;  // |gravity| of the scenes, m/s^2
 using namespace gpusolve;
 using namespace gpusolve::rbd;
 
+// The unit quaternion (w, x, y, z) of a turn by angle about the unit axis (x, y, z).
+inline std::array<double, 4> turn(double angle, double x, double y, double z) {
+  const double s = std::sin(angle / 2);
+  return {std::cos(angle / 2), s * x, s * y, s * z};
+}
+
 // A ground plane z = 0 and a close-packed pile of layers x (n x n) spheres of
 // radius r, each layer resting in the hollows of the one below (dense: up to
 // 12 contacts per sphere), slightly jittered so no two rows are identical.

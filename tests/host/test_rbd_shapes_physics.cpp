@@ -13,12 +13,6 @@ namespace {
 
 using Q = std::array<double, 4>;
 
-// The unit quaternion of a turn by angle about the unit axis (x, y, z).
-Q turn(double angle, double x, double y, double z) {
-  const double s = std::sin(angle / 2);
-  return {std::cos(angle / 2), s * x, s * y, s * z};
-}
-
 // Settings for the closed-form checks: a small step and a tight solve, so the
 // figures measure the contact model, not the solver's remaining error.
 SolverSettings<double> exact_settings(double mu) {

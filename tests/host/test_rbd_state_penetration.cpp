@@ -13,14 +13,9 @@
 
 using namespace gpusolve;
 using namespace gpusolve::rbd;
+using rbd_test::turn;
 
 namespace {
-
-// The unit quaternion of a turn by angle about the unit axis (x, y, z).
-std::array<double, 4> turn(double angle, double x, double y, double z) {
-  const double s = std::sin(angle / 2);
-  return {std::cos(angle / 2), s * x, s * y, s * z};
-}
 
 // A fixed unit cube (half extent 0.5) at the origin and a moving one above it at
 // height z, turned by q.

@@ -183,10 +183,11 @@ class World {
   void detect(std::uint32_t* hold) {
     const SolverSettings<T>& s = settings_;
     detection_.set_graphs(s.detection_graph);
+    const ContactDefaults<T> defaults({s.friction, s.restitution}, s.bounce_threshold, s.dt);
     if (hold != nullptr)
-      detection_.detect_queued(manager_.device(), contacts_, s.margin, s.friction, hold, stream_);
+      detection_.detect_queued(manager_.device(), contacts_, s.margin, defaults, hold, stream_);
     else
-      detection_.detect(manager_.device(), contacts_, s.margin, s.friction, stream_);
+      detection_.detect(manager_.device(), contacts_, s.margin, defaults, stream_);
   }
 
   void apply_forces(const std::uint32_t* hold) {

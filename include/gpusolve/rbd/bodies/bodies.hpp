@@ -12,6 +12,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/container/logical_view.hpp"
+#include "gpusolve/rbd/bodies/materials.hpp"
 #include "gpusolve/rbd/bodies/parts.hpp"
 #include "gpusolve/rbd/bodies/shapes.hpp"
 
@@ -49,6 +50,9 @@ struct Bodies {
   VecD2 aabb;               // n x 6: (min x, y, z, max x, y, z) of the bounding sphere
   VecD1 motion;             // running average of |v| + |w| (sleep heuristics, statistics)
   D1<std::uint32_t> first_part;  // a compound's first row of `parts` (others: 0)
+  D1<std::uint32_t> material;    // material id (materials.hpp; 0: the world's default)
+  // The pair table of the materials (not one per body).
+  MaterialPairs<Device, T> materials;
   // The parts of the compounds, not one per body (parts.hpp).
   Parts<Device, T> parts;
   // The shape kinds among the bodies (host side): collision detection compiles
@@ -87,6 +91,7 @@ struct Bodies {
     n_ = o.size();
     shapes = o.shapes;
     parts = o.parts;
+    materials = o.materials;
     zip_fields(*this, o, [](auto& dst, const auto& src, std::size_t, bool) { dst = src; });
     return *this;
   }
@@ -107,7 +112,8 @@ struct Bodies {
     VecD1View radius;
     VecD2View aabb;
     VecD1View motion;
-    D1View<std::uint32_t> first_part;
+    D1View<std::uint32_t> first_part, material;
+    typename MaterialPairs<Device, T>::View materials;
     typename Parts<Device, T>::View parts;
 
     GPUSOLVE_HD std::size_t size() const { return count; }
@@ -137,6 +143,8 @@ struct Bodies {
                 logical(aabb.view(), n_),
                 logical(motion.view(), n_),
                 logical(first_part.view(), n_),
+                logical(material.view(), n_),
+                materials.view(),
                 parts.view()};
   }
 
@@ -179,6 +187,7 @@ void zip_fields(A& a, B& b, F&& f) {
   f(a.aabb, b.aabb, 6, true);
   f(a.motion, b.motion, 1, true);
   f(a.first_part, b.first_part, 1, false);
+  f(a.material, b.material, 1, false);
 }
 
 }  // namespace gpusolve::rbd

@@ -24,6 +24,7 @@ struct Body {
   std::array<T, 3> v{}, w{}, force{}, torque{};
   T motion = 0;
   std::uint32_t first_part = 0;  // a compound's first part in its BodySet's parts()
+  std::uint32_t material = 0;    // an id of its BodySet's materials() (0: the world's default)
 };
 
 }  // namespace gpusolve::rbd

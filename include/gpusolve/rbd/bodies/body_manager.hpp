@@ -133,6 +133,7 @@ class BodyManager {
     copy_fields(device_, staging_, 0, first, false, stream);
     copy_fields(device_, staging_, first, n, true, stream);
     if (full || staging_.parts.size() != host_.parts().size()) copy_parts();
+    device_.materials.copy_from(host_.materials());
     rep.bodies = n;
     rep.full_from = first;
     return rep;
@@ -182,6 +183,7 @@ class BodyManager {
     if (!all) return;
     s.inv_mass(i) = r.inv_mass;
     s.first_part(i) = r.first_part;
+    s.material(i) = r.material;
     for (std::size_t c = 0; c < 9; ++c) {
       s.inertia(i, c) = r.inertia[c];
       s.inv_inertia_body(i, c) = r.inv_inertia_body[c];

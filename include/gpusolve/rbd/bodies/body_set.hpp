@@ -7,10 +7,12 @@
 #include <cstdint>
 #include <cstddef>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "gpusolve/rbd/bodies/body.hpp"
 #include "gpusolve/rbd/bodies/mass_properties.hpp"
+#include "gpusolve/rbd/bodies/materials.hpp"
 #include "gpusolve/rbd/bodies/validation.hpp"
 
 namespace gpusolve::rbd {
@@ -96,6 +98,7 @@ class BodySet {
   // returns its index.
   std::size_t add(const Body<T>& b) {
     validate_body(b, bodies_.size(), parts_);
+    require_material(b, bodies_.size());
     bodies_.push_back(b);
     return bodies_.size() - 1;
   }
@@ -104,7 +107,25 @@ class BodySet {
   void validate() const {
     for (std::size_t i = 0; i < bodies_.size(); ++i) validate(i);
   }
-  void validate(std::size_t i) const { validate_body(bodies_[i], i, parts_); }
+  void validate(std::size_t i) const {
+    validate_body(bodies_[i], i, parts_);
+    require_material(bodies_[i], i);
+  }
+
+  // A material (validated) for bodies to name by the id returned: 1, 2, ...;
+  // id 0 is the world's default (ContactSettings::friction, ::restitution).
+  // Two bodies' materials combine as combine_materials() says unless
+  // set_material_pair() names the pair.
+  std::uint32_t add_material(const Material<T>& m) { return materials_.add(m); }
+  void set_material_pair(std::uint32_t a, std::uint32_t b, const Material<T>& m) { materials_.set_pair(a, b, m); }
+  // Body i is of material id (an id add_material() returned, or 0).
+  void set_material(std::size_t i, std::uint32_t id) {
+    Body<T> b = bodies_.at(i);
+    b.material = id;
+    require_material(b, i);
+    bodies_[i] = b;
+  }
+  const MaterialList<T>& materials() const { return materials_; }
 
   std::size_t size() const { return bodies_.size(); }
   Body<T>& operator[](std::size_t i) { return bodies_[i]; }
@@ -116,6 +137,11 @@ class BodySet {
   const std::vector<Part<T>>& parts() const { return parts_; }
 
  private:
+  void require_material(const Body<T>& b, std::size_t i) const {
+    if (b.material >= materials_.size())
+      throw InvalidBodyError(i, "material", "names material " + std::to_string(b.material) + ", but the set has " +
+                                                std::to_string(materials_.size()) + " (add_material)");
+  }
   void require_positive(T x, const char* field) const {
     if (!(x > 0) || !std::isfinite(x)) throw InvalidBodyError(bodies_.size(), field, "must be positive and finite");
   }
@@ -206,6 +232,7 @@ class BodySet {
 
   std::vector<Part<T>> parts_;
   std::vector<Body<T>> bodies_;
+  MaterialList<T> materials_;
 };
 
 }  // namespace gpusolve::rbd

@@ -272,7 +272,8 @@ template <class View, class ContactView, class T>
 struct DetectionKey {
   View bodies;
   ContactView contacts;
-  T margin, mu;
+  T margin;
+  ContactDefaults<T> defaults;
   std::uint32_t* hold;
   ShapeMask shapes;
 };
@@ -294,18 +295,20 @@ class CollisionDetection {
   template <class E>
   using D1 = VectorD1<E, device_is<Device>>;
 
-  // Fills `contacts` (friction coefficient mu for models with friction) and
+  // Fills `contacts` (their friction and bounce from the bodies' materials,
+  // material 0 being defaults.world; a plain friction coefficient converts) and
   // returns their number. The work is queued on `stream`; the host waits once,
   // at the end, for the counts (and again only when a list had to grow).
   // Throws NonFiniteStateError naming the first body (not removed) whose
   // position, orientation or velocity is NaN or infinite; bodies are never written.
   template <class Model>
-  std::size_t detect(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin, T mu = T(0),
+  std::size_t detect(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin,
+                     const ContactDefaults<T>& defaults = {},
                      stream_t stream = stream_t{}) {
     empty_ = !begin(bodies, contacts, margin);
     if (empty_) return 0;
     for (;;) {
-      queue_detection(bodies, contacts, margin, mu, nullptr, stream);
+      queue_detection(bodies, contacts, margin, defaults, nullptr, stream);
       const detail::DetectionSummary<T> s = summary(stream);
       detail::require_usable(s);
       if (grow_for(s)) continue;  // the candidate list was short: the contacts' count is not yet known
@@ -325,12 +328,13 @@ class CollisionDetection {
   // capacity (those past it are not written), or what detect() throws for.
   // summary() says which, once the stream has passed the detection.
   template <class Model>
-  void detect_queued(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin, T mu,
+  void detect_queued(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin,
+                     const ContactDefaults<T>& defaults,
                      std::uint32_t* hold, stream_t stream = stream_t{}) {
     const std::size_t expected = contacts.expected_size();
     empty_ = !begin(bodies, contacts, margin);
     if (empty_) return;
-    queue_detection(bodies, contacts, margin, mu, hold, stream);
+    queue_detection(bodies, contacts, margin, defaults, hold, stream);
     contacts.count_on_device(&summary_.data()->contacts, expected);
   }
 
@@ -386,15 +390,16 @@ class CollisionDetection {
 
   // Queues one detection into the contacts' whole capacity (their size).
   template <class Model>
-  void queue_detection(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin, T mu,
+  void queue_detection(Bodies<Device, T>& bodies, Contacts<Device, T, Model>& contacts, T margin,
+                       const ContactDefaults<T>& defaults,
                        std::uint32_t* hold, stream_t stream) {
     const View b = bodies.view();
     const std::size_t n = b.size();
     contacts.resize(contacts.capacity());  // written up to the capacity; detect() trims
     const auto cv = contacts.view();
-    auto queue = [&](stream_t q) { queue_contacts(bodies, cv, margin, mu, hold, q); };
+    auto queue = [&](stream_t q) { queue_contacts(bodies, cv, margin, defaults, hold, q); };
     if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
-      const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, mu, hold, bodies.shapes};
+      const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, defaults, hold, bodies.shapes};
       graph_.run(key, queue, stream);
     } else {  // scratch may have moved: no kept graph may point to it
       graph_.forget();
@@ -404,18 +409,20 @@ class CollisionDetection {
   }
 
   template <class CView>
-  void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, T mu, std::uint32_t* hold,
+  void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, const ContactDefaults<T>& defaults,
+                      std::uint32_t* hold,
                       stream_t stream) {
     if ((bodies.shapes & ~Shapes) != 0)
       throw InvalidArgumentError("gpusolve: CollisionDetection: the bodies hold shape kinds that were not compiled in "
                                  "(its Shapes)");
     if constexpr ((Shapes & ~spheres_and_planes) != 0)
-      if ((bodies.shapes & ~spheres_and_planes) != 0) return queue_contacts<Shapes>(bodies, c, margin, mu, hold, stream);
-    queue_contacts<spheres_and_planes>(bodies, c, margin, mu, hold, stream);
+      if ((bodies.shapes & ~spheres_and_planes) != 0) return queue_contacts<Shapes>(bodies, c, margin, defaults, hold, stream);
+    queue_contacts<spheres_and_planes>(bodies, c, margin, defaults, hold, stream);
   }
 
   template <ShapeMask M, class CView>
-  void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, T mu, std::uint32_t* hold,
+  void queue_contacts(Bodies<Device, T>& bodies, const CView& c, T margin, const ContactDefaults<T>& defaults,
+                      std::uint32_t* hold,
                       stream_t stream) {
     const View b = bodies.view();
     const std::size_t n = b.size();
@@ -428,7 +435,7 @@ class CollisionDetection {
            detail::ListObstacles<View, T>{b, grid.cell, margin, obstacles_.data(), obstacle_count_.data()}, stream);
     using Walk = detail::ContactWalk<View, T, M>;
     const Walk walk{b, margin, grid, obstacles_.data(), obstacle_count_.data()};
-    const detail::PointWriter<Walk, CView, T> writer{walk, c, mu};
+    const detail::PointWriter<Walk, CView, T> writer{walk, c, defaults};
     if constexpr (Walk::spheres_only) {
       launch(dev, n, detail::CountPartners<Walk>{walk, count_.data(), kept_.data(), n}, stream);
       algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);

@@ -10,25 +10,40 @@
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
+#include "gpusolve/rbd/bodies/materials.hpp"
 #include "gpusolve/rbd/collision/kept_partners.hpp"
 #include "gpusolve/rbd/collision/manifold.hpp"
 
 namespace gpusolve::rbd::detail {
 
-// Writes manifold points as contacts of the pair (i, j), and inert contacts
-// where a pass finds fewer points than its count said.
+// Writes manifold points as contacts of the pair (i, j), with the friction
+// and restitution of the bodies' materials, and inert contacts where a pass
+// finds fewer points than its count said.
 template <class Walk, class ContactView, class T>
 struct PointWriter {
   Walk walk;
   ContactView contacts;
-  T mu;
+  ContactDefaults<T> defaults;
 
   GPUSOLVE_HD void write(std::uint32_t o, std::size_t i, std::uint32_t j, const Manifold<T>& m, int k) const {
+    const auto& b = walk.b;
     const ManifoldPoint<T>& q = m.points[k];
-    const math::Vector3<T> pa(walk.b.pos(i, 0), walk.b.pos(i, 1), walk.b.pos(i, 2));
-    const math::Vector3<T> pb(walk.b.pos(j, 0), walk.b.pos(j, 1), walk.b.pos(j, 2));
-    contacts.set(o, std::uint32_t(i), j, m.n, math::Vector3<T>(q.p - pa), math::Vector3<T>(q.p - pb), q.gap, mu,
-                 q.feature);
+    const math::Vector3<T> ra(q.p - math::load3<T>(b.pos, i)), rb(q.p - math::load3<T>(b.pos, j));
+    const Material<T> pair = b.materials.pair(b.material[i], b.material[j], defaults.world);
+    contacts.set(o, std::uint32_t(i), j, m.n, ra, rb, q.gap, pair.friction, q.feature,
+                 bounce(pair.restitution, i, j, m.n, ra, rb, q.gap));
+  }
+  // The separation speed restitution asks of a point: e times the approach
+  // speed, where the bodies approach faster than the threshold and would
+  // close the gap within the step; else 0.
+  GPUSOLVE_HD T bounce(T e, std::size_t i, std::uint32_t j, const math::Vector3<T>& n, const math::Vector3<T>& ra,
+                       const math::Vector3<T>& rb, T gap) const {
+    if (!(e > T(0))) return T(0);
+    const auto& b = walk.b;
+    const math::Vector3<T> ua = math::load3<T>(b.v, i) + math::load3<T>(b.w, i) % ra;
+    const math::Vector3<T> ub = math::load3<T>(b.v, j) + math::load3<T>(b.w, j) % rb;
+    const T approach = -math::dot(n, math::Vector3<T>(ua - ub));
+    return approach > defaults.bounce_threshold && gap < approach * defaults.dt ? e * approach : T(0);
   }
   // Fills [from, to) with inert contacts of the pair (i, j), apart by more
   // than the margin, along n where it is a unit vector.
@@ -38,7 +53,7 @@ struct PointWriter {
     const bool unit = math::dot(n, n) > T(0.5);
     const T apart = walk.margin + 2 * (walk.b.radius[i] + walk.b.radius[j]);
     for (std::uint32_t o = from; o < to; ++o)
-      contacts.set(o, std::uint32_t(i), j, unit ? n : up, zero, zero, apart, mu, inert_feature);
+      contacts.set(o, std::uint32_t(i), j, unit ? n : up, zero, zero, apart, defaults.world.friction, inert_feature);
   }
   // Writes the points of the pair (i, j) at [first, last), exactly filling it.
   GPUSOLVE_HD void pair(std::uint32_t first, std::uint32_t last, std::size_t i, std::uint32_t j) const {

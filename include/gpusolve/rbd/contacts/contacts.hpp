@@ -24,8 +24,8 @@ namespace gpusolve::rbd {
 // Conventions (thesis 3.3): the normal n points from body b to body a; ra and rb
 // go from each body's centre of mass to the contact point; phi0 is the gap along
 // n at the start of the step (negative when the bodies overlap). The narrow phase
-// fills a, b, n, ra, rb, phi0 and, for models with friction, mu (View::set also
-// builds the tangents). The solver fills dinv and x.
+// fills a, b, n, ra, rb, phi0, bounce and, for models with friction, mu
+// (View::set also builds the tangents). The solver fills dinv and x.
 //
 // Fields a model does not need (t, o, mu for Frictionless) are never allocated:
 // their views are empty.
@@ -47,6 +47,7 @@ struct Contacts {
   VecD2 ra, rb;            // n x 3: centre of mass -> contact point
   VecD1 phi0;              // gap at the start of the step
   VecD1 mu;                // friction coefficient
+  VecD1 bounce;            // separation speed restitution asks for (0: none), materials.hpp
   VecD2 dinv;              // n x rows^2: inverse diagonal block, row-major (i, r*rows + c)
   VecD2 x;                 // n x rows: impulse (normal, t, o)
 
@@ -64,6 +65,7 @@ struct Contacts {
       b.resize(cap);
       feature.resize(cap);
       phi0.resize(cap);
+      bounce.resize(cap);
       for (VecD2* f : {&n, &ra, &rb}) f->resize(cap, 3);
       dinv.resize(cap, rows * rows);
       x.resize(cap, rows);
@@ -104,7 +106,7 @@ struct Contacts {
     detail::Extent count;
     D1View<std::uint32_t> a, b, feature;
     VecD2View n, t, o, ra, rb;
-    VecD1View phi0, mu;
+    VecD1View phi0, mu, bounce;
     VecD2View dinv, x;
 
     GPUSOLVE_HD std::size_t size() const {
@@ -120,10 +122,12 @@ struct Contacts {
     // Writes contact i. V is any vector type with operator[](0..2). The
     // tangents are built from n, so friction rows are well defined for any
     // normal; mu is ignored by models without friction. point_feature tells
-    // the points of one body pair apart (warm starting matches it).
+    // the points of one body pair apart (warm starting matches it);
+    // bounce_speed is the normal separation speed restitution asks for.
     template <class V>
     GPUSOLVE_HD void set(std::size_t i, std::uint32_t body_a, std::uint32_t body_b, const V& normal,
-                         const V& r_a, const V& r_b, T gap, T friction, std::uint32_t point_feature = 0) const {
+                         const V& r_a, const V& r_b, T gap, T friction, std::uint32_t point_feature = 0,
+                         T bounce_speed = T(0)) const {
       a[i] = body_a;
       b[i] = body_b;
       feature[i] = point_feature;
@@ -133,6 +137,7 @@ struct Contacts {
         rb(i, c) = r_b[c];
       }
       phi0[i] = gap;
+      bounce[i] = bounce_speed;
       if constexpr (Model::friction) {
         mu[i] = friction;
         set_tangents(i);
@@ -176,6 +181,7 @@ struct Contacts {
                 logical(rb.view(), n_),
                 logical(phi0.view(), n_),
                 logical(mu.view(), n_),
+                logical(bounce.view(), n_),
                 logical(dinv.view(), n_),
                 logical(x.view(), n_)};
   }

@@ -1,6 +1,6 @@
 // ContactSettings: how contacts are generated and what they carry: the margin
 // within which a gap becomes a contact, the share of a penetration corrected
-// per step, the friction coefficient.
+// per step, the default material's friction and restitution.
 #pragma once
 
 #include <cmath>
@@ -16,13 +16,23 @@ struct ContactSettings {
   // scene; the default is a tenth of a unit radius (docs/tuning/contacts.md).
   T margin = T(0.1);
   T correction = T(0.2);  // fraction of a penetration removed per step, in (0, 1]
-  T friction = T(0.5);    // friction coefficient of every contact (models with friction)
+  // The world's default material (id 0, bodies/materials.hpp): friction coefficient
+  // (models with friction) and coefficient of restitution of its contacts.
+  T friction = T(0.5);
+  T restitution = T(0);
+  // A contact bounces (restitution) only where its bodies approach faster than
+  // this (m/s): slower impacts, as of a body coming to rest, do not (Box2D v3's
+  // restitution threshold, 1 m/s).
+  T bounce_threshold = T(1);
 
   // Throws InvalidArgumentError naming the first offending field.
   void validate() const {
     if (!(margin >= 0) || !std::isfinite(margin)) detail::bad_setting("margin", "must be non-negative and finite");
     if (!(correction > 0 && correction <= 1)) detail::bad_setting("correction", "must lie in (0, 1]");
     if (!(friction >= 0) || !std::isfinite(friction)) detail::bad_setting("friction", "must be non-negative and finite");
+    if (!(restitution >= 0 && restitution <= 1)) detail::bad_setting("restitution", "must lie in [0, 1]");
+    if (!(bounce_threshold >= 0) || !std::isfinite(bounce_threshold))
+      detail::bad_setting("bounce_threshold", "must be non-negative and finite");
   }
 };
 

@@ -194,7 +194,10 @@ struct InverseBlocks {
 // open by phi0 may close within the step but no further (it is not pushed
 // apart early). A penetration (phi0 < 0) is removed only by the fraction
 // `correction` per step: removing it all at once turns a deep contact into a
-// separation speed of |phi0|/dt, which throws bodies out of a pile.
+// separation speed of |phi0|/dt, which throws bodies out of a pile. A contact
+// that bounces (restitution: c.bounce > 0, set by detection for an impact
+// within the step) asks for exactly that separation speed instead, with no
+// position correction on top, which would add energy to the bounce.
 template <class Model, class BV, class CV, class T>
 struct CalcNextPhi {
   BV b;
@@ -218,8 +221,8 @@ struct CalcNextPhi {
     const math::Vector3<T> du = detail::point_velocity(va, wa, math::load3<T>(c.ra, i)) -
                                 detail::point_velocity(vb, wb, math::load3<T>(c.rb, i));
     for (std::size_t r = 0; r < Model::rows; ++r) e[r] = math::dot(f.q[r], du);
-    const T phi0 = c.phi0[i];
-    e[0] += (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;
+    const T phi0 = c.phi0[i], bounce = c.bounce[i];
+    e[0] += bounce > T(0) ? -bounce : (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;
   }
 };
 
