@@ -221,8 +221,9 @@ struct CalcNextPhi {
     const math::Vector3<T> du = detail::point_velocity(va, wa, math::load3<T>(c.ra, i)) -
                                 detail::point_velocity(vb, wb, math::load3<T>(c.rb, i));
     for (std::size_t r = 0; r < Model::rows; ++r) e[r] = math::dot(f.q[r], du);
-    const T phi0 = c.phi0[i], bounce = c.bounce[i];
-    e[0] += bounce > T(0) ? -bounce : (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;
+    const T phi0 = c.phi0[i], bounce = c.bounce[i], approach = e[0];
+    e[0] += (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;  // as without restitution, to the bit
+    if (bounce > T(0)) e[0] = approach - bounce;
   }
 };
 
