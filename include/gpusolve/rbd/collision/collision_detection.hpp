@@ -95,6 +95,14 @@ struct ContactWalk {
       for_each_manifold<M, T>(b, i, j, margin, reverse, f);
     }
   }
+  // The one manifold of two primitives (true; no points where their gap
+  // passes the margin), or false where either body is a compound.
+  GPUSOLVE_HD bool primitive_manifold(std::size_t i, std::uint32_t j, Manifold<T>& m) const {
+    if constexpr ((M & shape_bit(compound)) != 0)
+      if (b.shape[i] == compound || b.shape[j] == compound) return false;
+    m = collide<M & primitives, T>(b.shape[i], placed_shape<T>(b, i), b.shape[j], placed_shape<T>(b, j), margin);
+    return true;
+  }
   // The number of contact points of the pair (i, j).
   GPUSOLVE_HD std::uint32_t points(std::size_t i, std::uint32_t j) const {
     std::uint32_t count = 0;
@@ -345,6 +353,7 @@ class CollisionDetection {
     if (s.candidates <= candidate_a_.size_x()) return false;
     for (D1<std::uint32_t>* v : {&candidate_a_, &candidate_b_, &pair_points_, &point_offset_})
       gpusolve::detail::ensure_size(*v, s.candidates);
+    gpusolve::detail::ensure_size(manifolds_, candidate_a_.size_x());
     sized_for_ = 0;  // a kept graph points to the old stores
     return true;
   }
@@ -383,6 +392,7 @@ class CollisionDetection {
     if ((bodies.shapes & ~spheres_and_planes) != 0 && candidate_a_.size_x() < 4 * n) {  // the pair passes run
       for (D1<std::uint32_t>* v : {&candidate_a_, &candidate_b_, &pair_points_, &point_offset_})
         gpusolve::detail::ensure_size(*v, 4 * n);
+      gpusolve::detail::ensure_size(manifolds_, candidate_a_.size_x());
       sized_for_ = 0;
     }
     return true;
@@ -468,13 +478,14 @@ class CollisionDetection {
                                          candidate_b_.data(), capacity},
            stream);
     launch(dev, capacity,
-           detail::CountPairPoints<Walk>{walk, candidate_a_.data(), candidate_b_.data(), candidates, capacity,
-                                         pair_points_.data()},
+           detail::CountPairPoints<Walk, T>{walk, candidate_a_.data(), candidate_b_.data(), candidates, capacity,
+                                            pair_points_.data(), manifolds_.data()},
            stream);
     algorithms_.inclusive_sum(pair_points_.data(), point_offset_.data(), capacity, stream);
     launch(dev, capacity,
-           detail::WritePairContacts<Writer, detail::Summarize<T>>{
+           detail::WritePairContacts<Writer, detail::Summarize<T>, T>{
                writer, candidate_a_.data(), candidate_b_.data(), point_offset_.data(), pair_points_.data(),
+               manifolds_.data(),
                {point_offset_.data() + (capacity - 1), scan_.data(), summary_.data(), hold, contact_capacity,
                 candidates, capacity}},
            stream);
@@ -483,6 +494,7 @@ class CollisionDetection {
   UniformGrid<Device, T> grid_;
   D1<std::uint32_t> obstacles_, obstacle_count_, count_, offset_, kept_;
   D1<std::uint32_t> candidate_a_, candidate_b_, pair_points_, point_offset_;  // the pair passes' list
+  D1<Manifold<T>> manifolds_;  // a primitive pair's manifold, from its count pass to its write pass
   D1<detail::BodyScan<T>> scan_;
   D1<detail::DetectionSummary<T>> summary_;
   detail::DeviceAlgorithms<Device> algorithms_;

@@ -109,33 +109,53 @@ struct WriteCandidates {
 };
 
 // The number of contact points of candidate pair k (0 past the candidates
-// listed: the pass runs over the list's whole capacity, its count stays on the device).
-template <class Walk>
+// listed: the pass runs over the list's whole capacity, its count stays on the
+// device). A pair of primitives keeps its one manifold in manifold[k] for the
+// write pass (computed once, and the two passes cannot disagree); a pair with
+// a compound, whose part pairs give several, is marked count -1 and written
+// from its manifolds computed again.
+template <class Walk, class T>
 struct CountPairPoints {
   Walk walk;
   const std::uint32_t *a, *b;
   const std::uint32_t* candidates;  // how many are listed
   std::size_t capacity;
   std::uint32_t* points;
+  Manifold<T>* manifold;
   GPUSOLVE_HD void operator()(std::size_t k) const {
-    points[k] = k < *candidates && *candidates <= capacity && a[k] != b[k] ? walk.points(a[k], b[k]) : 0u;
+    std::uint32_t p = 0;
+    Manifold<T> m;
+    if (k < *candidates && *candidates <= capacity && a[k] != b[k]) {
+      if (walk.primitive_manifold(a[k], b[k], m)) {
+        p = std::uint32_t(m.count);
+      } else {
+        p = walk.points(a[k], b[k]);
+        m.count = -1;
+      }
+    }
+    points[k] = p;
+    if (p > 0) manifold[k] = m;
   }
 };
 
 // Writes candidate pair k's points at [offset[k] - points[k], offset[k]),
 // unless that passes the contacts' capacity (their view's size): the caller
 // grows and repeats. Pair 0's thread also writes the summary the host reads.
-template <class Writer, class Summary>
+template <class Writer, class Summary, class T>
 struct WritePairContacts {
   Writer writer;
   const std::uint32_t *a, *b;
   const std::uint32_t* offset;  // inclusive scan of the points
   const std::uint32_t* points;
+  const Manifold<T>* manifold;
   Summary summarize;
   GPUSOLVE_HD void operator()(std::size_t k) const {
     if (k == 0) summarize(0);
     if (points[k] == 0 || offset[k] > writer.contacts.size()) return;
-    writer.pair(offset[k] - points[k], offset[k], a[k], b[k]);
+    const std::uint32_t first = offset[k] - points[k];
+    const Manifold<T> m = manifold[k];
+    if (m.count < 0) return writer.pair(first, offset[k], a[k], b[k]);
+    for (int q = 0; q < m.count; ++q) writer.write(first + std::uint32_t(q), a[k], b[k], m, q);
   }
 };
 
