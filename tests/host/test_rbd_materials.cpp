@@ -131,3 +131,42 @@ TEST_CASE("bad materials are refused by name: friction, restitution, an unknown 
   s.restitution = 1.5f;
   CHECK(message([&] { s.validate(); }).find("restitution") != std::string::npos);
 }
+
+TEST_CASE("a union's parts meet the floor with their own materials, or their body's", "[rbd][materials]") {
+  BodySet<float> set;
+  const std::size_t floor = set.add_plane({0, 0, 1}, 0);
+  const std::uint32_t rough = set.add_material({1.f, 0.f}), slick = set.add_material({0.09f, 0.f}),
+                      grippy = set.add_material({0.64f, 0.5f});
+  set.set_material(floor, rough);
+  std::vector<Part<float>> parts(2);
+  for (int k = 0; k < 2; ++k) {
+    parts[k].shape = box;
+    parts[k].shape_param = {0.5f, 0.5f, 0.5f, 0.f};
+    parts[k].pos = {k == 0 ? -0.5f : 0.5f, 0.f, 0.f};
+  }
+  parts[0].material = slick;  // part 1 names none: its body's
+  const std::size_t sled = set.add_compound({0.f, 0.f, 0.49f}, parts, 2.f);
+  set.set_material(sled, grippy);
+  set[sled].v = {0.f, 0.f, -2.f};  // an impact above the threshold: the bounce follows the part too
+  BodyManager<device::cpu> m(set);
+  m.syncDevice();
+  CollisionDetection<device::cpu> cd;
+  Contacts<device::cpu, float, ConeFriction> c;
+  const std::size_t n = cd.detect(m.device(), c, 0.05f, ContactDefaults<float>({0.5f, 0.f}, 1.f, 0.01f));
+  REQUIRE(n == 8);  // four corners of each part's face
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool slick_part = (c.feature(k) >> 24) == 0;  // the union's part, as the feature id carries it
+    INFO("contact " << k << " at x = " << c.ra(k, 0));
+    CHECK(c.ra(k, 0) * (slick_part ? 1 : -1) <= 1e-6f);  // part 0 lies at x <= 0
+    CHECK(c.mu(k) == Approx(slick_part ? 0.3 : 0.8));                 // sqrt(0.09 * 1), sqrt(0.64 * 1)
+    CHECK(c.bounce(k) == Approx(slick_part ? 0.0 : 0.5 * 2.0));        // max(0, 0), max(0.5, 0) times 2 m/s
+  }
+  parts[1].material = 9;
+  try {
+    set.add_compound({5.f, 0.f, 1.f}, parts, 1.f);
+    FAIL("a part's unknown material was taken");
+  } catch (const InvalidBodyError& e) {
+    CHECK(e.field() == "parts[1].material");
+  }
+  CHECK(set.parts().size() == 2);  // the refused union left no parts behind
+}

@@ -203,6 +203,7 @@ class BodyManager {
       for (std::size_t c = 0; c < 3; ++c) s.pos(k, c) = part.pos[c];
       const auto R = math::to_rotation_matrix(math::Quaternion<T>(part.q[0], part.q[1], part.q[2], part.q[3]));
       for (std::size_t c = 0; c < 9; ++c) s.R(k, c) = R[c];
+      s.material(k) = part.material;
     }
     device_.parts = s;
   }

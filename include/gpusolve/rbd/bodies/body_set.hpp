@@ -138,9 +138,15 @@ class BodySet {
 
  private:
   void require_material(const Body<T>& b, std::size_t i) const {
-    if (b.material >= materials_.size())
-      throw InvalidBodyError(i, "material", "names material " + std::to_string(b.material) + ", but the set has " +
-                                                std::to_string(materials_.size()) + " (add_material)");
+    auto require = [&](std::uint32_t id, const std::string& field) {
+      if (id >= materials_.size())
+        throw InvalidBodyError(i, field, "names material " + std::to_string(id) + ", but the set has " +
+                                             std::to_string(materials_.size()) + " (add_material)");
+    };
+    require(b.material, "material");
+    if (b.shape == compound)
+      for (std::size_t k = 0; k < std::size_t(b.shape_param[0]); ++k)
+        require(parts_[b.first_part + k].material, "parts[" + std::to_string(k) + "].material");
   }
   void require_positive(T x, const char* field) const {
     if (!(x > 0) || !std::isfinite(x)) throw InvalidBodyError(bodies_.size(), field, "must be positive and finite");

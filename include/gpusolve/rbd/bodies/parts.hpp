@@ -26,6 +26,7 @@ struct Part {
   std::array<T, shape_param_rows> shape_param{};
   std::array<T, 3> pos{};
   std::array<T, 4> q{1, 0, 0, 0};
+  std::uint32_t material = 0;  // an id of the BodySet's materials(); 0: the body's own
 };
 
 // The parts of every compound on one backend, structure of arrays like
@@ -42,6 +43,7 @@ struct Parts {
   VecD2 shape_param;       // n x 4
   VecD2 pos;               // n x 3
   VecD2 R;                 // n x 9
+  D1<std::uint32_t> material;  // 0: the body's own
 
   std::size_t size() const { return shape.size(); }
   // Reallocates for n parts (contents lost).
@@ -50,6 +52,7 @@ struct Parts {
     shape_param.resize(n, shape_param_rows);
     pos.resize(n, 3);
     R.resize(n, 9);
+    material.resize(n);
   }
   template <class D2>
   Parts& operator=(const Parts<D2, T>& o) {
@@ -58,14 +61,16 @@ struct Parts {
     shape_param = o.shape_param;
     pos = o.pos;
     R = o.R;
+    material = o.material;
     return *this;
   }
 
   struct View {
     decltype(std::declval<D1<std::uint8_t>&>().view()) shape;
     decltype(std::declval<VecD2&>().view()) shape_param, pos, R;
+    decltype(std::declval<D1<std::uint32_t>&>().view()) material;
   };
-  View view() { return {shape.view(), shape_param.view(), pos.view(), R.view()}; }
+  View view() { return {shape.view(), shape_param.view(), pos.view(), R.view(), material.view()}; }
 };
 
 }  // namespace gpusolve::rbd

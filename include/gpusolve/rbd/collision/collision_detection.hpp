@@ -71,6 +71,7 @@ struct ContactWalk {
   const std::uint32_t* obstacle_count;  // their number
 
   static constexpr bool spheres_only = (M & ~spheres_and_planes) == 0;
+  static constexpr bool compounds = (M & shape_bit(compound)) != 0;
 
   // The one manifold of sphere i against sphere or plane j (spheres_only).
   GPUSOLVE_HD Manifold<T> sphere_manifold(std::size_t i, std::uint32_t j) const {

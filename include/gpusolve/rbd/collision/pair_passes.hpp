@@ -11,6 +11,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/bodies/materials.hpp"
+#include "gpusolve/rbd/bodies/shapes.hpp"
 #include "gpusolve/rbd/collision/kept_partners.hpp"
 #include "gpusolve/rbd/collision/manifold.hpp"
 
@@ -29,9 +30,19 @@ struct PointWriter {
     const auto& b = walk.b;
     const ManifoldPoint<T>& q = m.points[k];
     const math::Vector3<T> ra(q.p - math::load3<T>(b.pos, i)), rb(q.p - math::load3<T>(b.pos, j));
-    const Material<T> pair = b.materials.pair(b.material[i], b.material[j], defaults.world);
+    const Material<T> pair =
+        b.materials.pair(material_of(i, q.feature >> 24), material_of(j, (q.feature >> 16) & 0xffu), defaults.world);
     contacts.set(o, std::uint32_t(i), j, m.n, ra, rb, q.gap, pair.friction, q.feature,
                  bounce(pair.restitution, i, j, m.n, ra, rb, q.gap));
+  }
+  // The material of body i at its part `part` (body_manifolds.hpp's feature
+  // bits): a compound's part's own where it names one, else the body's.
+  GPUSOLVE_HD std::uint32_t material_of(std::size_t i, std::uint32_t part) const {
+    const auto& b = walk.b;
+    if constexpr (Walk::compounds)
+      if (b.shape[i] == compound)
+        if (const std::uint32_t m = b.parts.material[b.first_part[i] + part]) return m;
+    return b.material[i];
   }
   // The separation speed restitution asks of a point: e times the approach
   // speed, where the bodies approach faster than the threshold and would
