@@ -54,11 +54,7 @@ void check_rebound() {
 
 TEST_CASE("a ball dropped from h rebounds to e^2 h with every method, and e = 0 does not bounce",
           "[rbd_physics][materials]") {
-  check_rebound<AcceleratedJacobi<Gather>>();
-  check_rebound<Jacobi<Gather>>();
-  check_rebound<ColouredGaussSeidel>();
-  check_rebound<Substepping<>>();
-  check_rebound<AcceleratedCG>();
+  for_every_method([](auto method) { check_rebound<decltype(method)>(); });
 }
 
 TEST_CASE("a slow impact below the restitution threshold does not bounce", "[rbd_physics][materials]") {

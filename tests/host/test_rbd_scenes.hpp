@@ -17,6 +17,16 @@ inline constexpr double g = 9.81;  // |gravity| of the scenes, m/s^2
 using namespace gpusolve;
 using namespace gpusolve::rbd;
 
+// Calls f(Method{}) for each of the five solver methods, for checks that every method must pass alike.
+template <class F>
+void for_every_method(F&& f) {
+  f(AcceleratedJacobi<Gather>{});
+  f(Jacobi<Gather>{});
+  f(ColouredGaussSeidel{});
+  f(Substepping<>{});
+  f(AcceleratedCG{});
+}
+
 // The unit quaternion (w, x, y, z) of a turn by angle about the unit axis (x, y, z).
 inline std::array<double, 4> turn(double angle, double x, double y, double z) {
   const double s = std::sin(angle / 2);

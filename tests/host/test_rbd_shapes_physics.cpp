@@ -224,20 +224,12 @@ void check_cube_slides_flat() {
 
 TEST_CASE("a box slides down an incline under the cone at g (sin - mu cos) with every method",
           "[rbd_physics][shapes]") {
-  check_box_cone_incline<Jacobi<Gather>>();
-  check_box_cone_incline<AcceleratedJacobi<Gather>>();
-  check_box_cone_incline<ColouredGaussSeidel>();
-  check_box_cone_incline<Substepping<>>();
-  check_box_cone_incline<AcceleratedCG>();
+  for_every_method([](auto method) { check_box_cone_incline<decltype(method)>(); });
 }
 
 TEST_CASE("a cube launched along the floor stays down, stays level and stops after v0^2 / (2 mu g)",
           "[rbd_physics][shapes]") {
-  check_cube_slides_flat<AcceleratedJacobi<Gather>>();
-  check_cube_slides_flat<Jacobi<Gather>>();
-  check_cube_slides_flat<ColouredGaussSeidel>();
-  check_cube_slides_flat<Substepping<>>();
-  check_cube_slides_flat<AcceleratedCG>();
+  for_every_method([](auto method) { check_cube_slides_flat<decltype(method)>(); });
 }
 
 TEST_CASE("a cube at rest on a plane: four points whose impulses sum to its weight", "[rbd_physics][shapes]") {

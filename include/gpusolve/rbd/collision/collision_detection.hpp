@@ -354,7 +354,7 @@ class CollisionDetection {
     if (s.candidates <= candidate_a_.size_x()) return false;
     for (D1<std::uint32_t>* v : {&candidate_a_, &candidate_b_, &pair_points_, &point_offset_})
       gpusolve::detail::ensure_size(*v, s.candidates);
-    gpusolve::detail::ensure_size(manifolds_, candidate_a_.size_x());
+    manifolds_.resize(candidate_a_.size_x());  // one per candidate: 96 bytes each, no slack on top of the list's
     sized_for_ = 0;  // a kept graph points to the old stores
     return true;
   }
@@ -393,7 +393,7 @@ class CollisionDetection {
     if ((bodies.shapes & ~spheres_and_planes) != 0 && candidate_a_.size_x() < 4 * n) {  // the pair passes run
       for (D1<std::uint32_t>* v : {&candidate_a_, &candidate_b_, &pair_points_, &point_offset_})
         gpusolve::detail::ensure_size(*v, 4 * n);
-      gpusolve::detail::ensure_size(manifolds_, candidate_a_.size_x());
+      manifolds_.resize(candidate_a_.size_x());
       sized_for_ = 0;
     }
     return true;
