@@ -1,6 +1,6 @@
 // The atlas's scenes as BodySets: the shared sphere and cube piles of docs/piles.md
 // (the scenes peer engines are measured on), a mixed pile, a column of spheres
-// of alternating mass, a box pyramid and a box stack.
+// of alternating mass, a pile of sphere clumps, a box pyramid and a box stack.
 #pragma once
 
 #include <cmath>
@@ -102,15 +102,35 @@ rbd::BodySet<T> mixed_pile(std::size_t n) {
     const double a = 2 * 3.14159265358979 * k / 3;
     clump.push_back({rbd::sphere, {T(0.6), 0, 0, 0}, {T(0.55 * std::cos(a)), T(0.55 * std::sin(a)), T(0)}, {1, 0, 0, 0}});
   }
+  const rbd::CompoundType<T> clump_type = set.add_compound_type(clump, T(1));
   const std::size_t L = jittered_lattice(n, 3.6, 1.8, [&](std::size_t i, const std::array<double, 3>& c) {
     const std::array<T, 3> x{T(c[0]), T(c[1]), T(c[2])};
     const std::array<T, 4> q = turns.next<T>();
     if (i % 4 == 0) set.add_sphere(x, T(1), T(1));
     if (i % 4 == 1) set.add_box(x, {T(1), T(0.7), T(0.5)}, T(1), q);
     if (i % 4 == 2) set.add_capsule(x, T(0.5), T(0.9), T(1), q);
-    if (i % 4 == 3) set.add_compound(x, clump, T(1), q);
+    if (i % 4 == 3) set.add_compound(x, clump_type, q);
   });
   add_open_box(set, L, 3.6);
+  return set;
+}
+
+// The clump pile (issue 36): N clumps of three spheres of radius 1 whose
+// centres lie on a line 1.2 apart, one compound type of mass 3 (its inertia
+// summed over the spheres, the overlaps counted twice), on the jittered
+// lattice at spacing 4.5 (a clump reaches 2.2 from its centre), z0 = 2.3,
+// turned at random, in the open box of planes.
+template <class T>
+rbd::BodySet<T> clump_pile(std::size_t n) {
+  rbd::BodySet<T> set;
+  RandomTurns turns;
+  std::vector<rbd::Part<T>> line;
+  for (int k = -1; k <= 1; ++k) line.push_back({rbd::sphere, {T(1), 0, 0, 0}, {T(1.2 * k), 0, 0}, {1, 0, 0, 0}});
+  const rbd::CompoundType<T> type = set.add_compound_type(line, T(3));
+  const std::size_t L = jittered_lattice(n, 4.5, 2.3, [&](std::size_t, const std::array<double, 3>& c) {
+    set.add_compound({T(c[0]), T(c[1]), T(c[2])}, type, turns.next<T>());
+  });
+  add_open_box(set, L, 4.5);
   return set;
 }
 

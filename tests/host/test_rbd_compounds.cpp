@@ -160,3 +160,67 @@ TEST_CASE("a clump resting on a plane has a contact per sphere and stays put", "
   w.syncHost();
   for (int c = 0; c < 3; ++c) CHECK(std::abs(set[i].pos[c] - start[c]) < 1e-3 * 0.22);
 }
+
+TEST_CASE("a compound type is stored once and steps as compounds with parts of their own", "[rbd][compound][rbd_physics]") {
+  // Two clump piles from the same places and turns: one of compounds with
+  // parts of their own, one of bodies of a single type.
+  BodySet<double> own, shared;
+  const CompoundType<double> type = shared.add_compound_type(clump<double>(), 1.0);
+  for (BodySet<double>* set : {&own, &shared}) set->add_plane({0, 0, 1}, 0);
+  for (int k = 0; k < 60; ++k) {
+    const std::array<double, 3> at{0.3 * (k % 4), 0.2 * (k % 3), 0.3 + 0.45 * k};
+    const auto q = turn(0.7 * k, 0.6, 0, 0.8);
+    own.add_compound(at, clump<double>(), 1.0, q);
+    shared.add_compound(at, type, q);
+  }
+  CHECK(own.parts().size() == 60 * clump<double>().size());
+  CHECK(shared.parts().size() == clump<double>().size());
+  for (std::size_t i = 1; i < own.size(); ++i) {
+    CHECK(shared[i].first_part == 0);
+    for (int c = 0; c < 3; ++c) CHECK(shared[i].pos[c] == own[i].pos[c]);
+    for (int c = 0; c < 9; ++c) CHECK(shared[i].inv_inertia_body[c] == own[i].inv_inertia_body[c]);
+    for (int c = 0; c < 4; ++c) CHECK(shared[i].shape_param[c] == own[i].shape_param[c]);
+  }
+  SolverSettings<double> s;
+  s.dt = 0.002;
+  World<device::cpu, double> a(own, s), b(shared, s);
+  for (int step = 0; step < 300; ++step) REQUIRE(a.step().solver.contacts == b.step().solver.contacts);
+  a.syncHost();
+  b.syncHost();
+  for (std::size_t i = 1; i < own.size(); ++i)
+    for (int c = 0; c < 3; ++c) REQUIRE(shared[i].pos[c] == own[i].pos[c]);
+}
+
+TEST_CASE("a compound type takes its mass and principal inertia outright for overlapping parts", "[rbd][compound]") {
+  BodySet<double> set;
+  // Two balls of radius 0.5 whose centres lie 0.6 apart overlap: summing
+  // their volumes would count the lens twice, so the user gives the figures.
+  const std::vector<Part<double>> peanut = {ball_at(0.5, {-0.3, 0, 0}), ball_at(0.5, {0.3, 0, 0})};
+  const CompoundType<double> t = set.add_compound_type(peanut, 2.0, {0.15, 0.3, 0.3});
+  CHECK(t.count == 2);
+  CHECK(t.bound == Approx(0.8));
+  CHECK(set.parts()[0].pos[0] == -0.3);  // placed as given: the frame is the centre of mass
+  const std::size_t i = set.add_compound({1, 2, 3}, t);
+  CHECK(set[i].pos == std::array<double, 3>{1, 2, 3});
+  CHECK(set[i].inv_mass == 0.5);
+  CHECK(set[i].inertia[0] == 0.15);
+  CHECK(set[i].inv_inertia_body[4] == Approx(1 / 0.3));
+  CHECK(set[i].inertia[1] == 0);
+  // Bad figures name the field; a refused type stores no parts.
+  const auto field_of = [](auto&& add) {
+    try {
+      add();
+    } catch (const InvalidBodyError& e) {
+      return e.field();
+    }
+    return std::string("none");
+  };
+  CHECK(field_of([&] { set.add_compound_type(peanut, 2.0, {0.15, 0, 0.3}); }) == "inertia");
+  CHECK(field_of([&] { set.add_compound_type(peanut, -1.0); }) == "mass");
+  CHECK(field_of([&] { set.add_compound_type({ball_at(0.5, {0, 0, 0}), ball_at(-1, {1, 0, 0})}, 1.0); }) ==
+        "parts[1].radius");
+  CHECK(field_of([&] { set.add_compound({0, 0, 0}, t, {1, 1, 0, 0}); }) == "q");
+  CHECK(field_of([&] { set.add_compound({0, 0, 0}, clump<double>(), 1.0, {2, 0, 0, 0}); }) == "q");
+  CHECK(set.parts().size() == 2);
+  CHECK(set.size() == 1);
+}

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gpusolve/rbd/bodies/body.hpp"
+#include "gpusolve/rbd/bodies/compound_type.hpp"
 #include "gpusolve/rbd/bodies/mass_properties.hpp"
 #include "gpusolve/rbd/bodies/materials.hpp"
 #include "gpusolve/rbd/bodies/validation.hpp"
@@ -63,21 +64,61 @@ class BodySet {
     return add_fixed(capsule, {radius, half_length, 0, 0}, pos, q);
   }
 
-  // A moving compound (pe's Union): one rigid body made of the sphere, box and
-  // capsule parts, placed in the compound's frame, which the body's q turns and
-  // whose origin lies at `pos`. The mass is shared by volume; the body's
-  // centre (Body::pos) is the centre of mass, with the parts moved to match,
-  // and its inertia the full tensor about it (solid_compound).
-  std::size_t add_compound(const Vec& pos, const std::vector<Part<T>>& parts, T mass, const Quat& q = unrotated) {
+  // A compound type (a clump template): its parts stored once in parts(),
+  // shared by every body add_compound(pos, type, q) makes. The mass is shared
+  // by the parts' volumes and the inertia summed over them by parallel axes
+  // (solid_compound), so overlapping parts count twice: for those, give the
+  // mass and inertia outright (below). The parts are moved so that the type's
+  // frame lies at its centre of mass. Errors name the index the next body takes.
+  CompoundType<T> add_compound_type(const std::vector<Part<T>>& parts, T mass) {
     require_positive(mass, "mass");
-    const CompoundProperties<T> c = compound_properties(parts, mass, q);
-    return add_moving(compound, {}, centre_of(pos, c, q), q, mass, c.inertia, parts, c.centre);
+    require_parts(parts);
+    const CompoundProperties<T> c = solid_compound(parts, mass);
+    return store_type(parts, mass, c.inertia, c.centre);
   }
-  // A compound that never moves (its centre is its parts' centre of volume).
+  // A compound type of a given mass and principal inertia (as DEM-Engine's
+  // clump templates take them): the parts placed relative to the centre of
+  // mass, along the principal axes, whatever they overlap.
+  CompoundType<T> add_compound_type(const std::vector<Part<T>>& parts, T mass, const Vec& principal_inertia) {
+    require_positive(mass, "mass");
+    for (T x : principal_inertia) require_positive(x, "inertia");
+    require_parts(parts);
+    std::array<T, 9> inertia{};
+    for (int k = 0; k < 3; ++k) inertia[4 * k] = principal_inertia[k];
+    return store_type(parts, mass, inertia, Vec{});
+  }
+  // A moving compound of the type: the origin of the frame its parts were
+  // given in lies at `pos`, turned by q; the body's centre (Body::pos) is the
+  // centre of mass.
+  std::size_t add_compound(const Vec& pos, const CompoundType<T>& type, const Quat& q = unrotated) {
+    require_positive(type.mass, "mass");
+    detail::require_unit(q, bodies_.size(), "q");
+    Body<T> b = compound_record(pos, type, q);
+    b.status = active;
+    b.inv_mass = T(1) / type.mass;
+    b.inertia = type.inertia;
+    const auto& I = type.inertia;
+    const math::Matrix3x3<double> inv = math::inverse_spd(
+        math::Matrix3x3<double>(I[0], I[1], I[2], I[3], I[4], I[5], I[6], I[7], I[8]));
+    for (int k = 0; k < 9; ++k) b.inv_inertia_body[k] = T(inv[k]);
+    return add(b);
+  }
+  // A compound of the type that never moves.
+  std::size_t add_fixed_compound(const Vec& pos, const CompoundType<T>& type, const Quat& q = unrotated) {
+    detail::require_unit(q, bodies_.size(), "q");
+    return add(compound_record(pos, type, q));
+  }
+
+  // A moving compound (pe's Union) with parts of its own: one rigid body made
+  // of sphere, box and capsule parts, the type add_compound_type(parts, mass)
+  // placed as add_compound(pos, type, q) places it.
+  std::size_t add_compound(const Vec& pos, const std::vector<Part<T>>& parts, T mass, const Quat& q = unrotated) {
+    return with_own_parts([&] { return add_compound(pos, add_compound_type(parts, mass), q); });
+  }
+  // A compound with parts of its own that never moves (its centre is its
+  // parts' centre of volume).
   std::size_t add_fixed_compound(const Vec& pos, const std::vector<Part<T>>& parts, const Quat& q = unrotated) {
-    const CompoundProperties<T> c = compound_properties(parts, T(1), q);
-    Body<T> b = fixed_record(compound, {}, centre_of(pos, c, q), q);
-    return add_with_parts(b, parts, c.centre);
+    return with_own_parts([&] { return add_fixed_compound(pos, add_compound_type(parts, T(1)), q); });
   }
 
   // The fixed half-space n.x <= d; n need not be normalised but must not be zero.
@@ -132,8 +173,8 @@ class BodySet {
   const Body<T>& operator[](std::size_t i) const { return bodies_[i]; }
   std::vector<Body<T>>& records() { return bodies_; }
   const std::vector<Body<T>>& records() const { return bodies_; }
-  // The parts of every compound, in the order they were added, positions
-  // relative to their body's centre of mass. Parts are never removed.
+  // The parts of every compound type, in the order they were added,
+  // positions relative to their type's centre of mass. Parts are never removed.
   const std::vector<Part<T>>& parts() const { return parts_; }
 
  private:
@@ -167,20 +208,6 @@ class BodySet {
     }
     return add(b);
   }
-  // A moving compound of the given full inertia tensor (body frame, about its centre).
-  std::size_t add_moving(ShapeKind kind, const std::array<T, shape_param_rows>& param, const Vec& pos, const Quat& q,
-                         T mass, const std::array<T, 9>& inertia, const std::vector<Part<T>>& parts,
-                         const Vec& centre) {
-    Body<T> b = fixed_record(kind, param, pos, q);
-    b.status = active;
-    b.inv_mass = T(1) / mass;
-    b.inertia = inertia;
-    const math::Matrix3x3<double> I(inertia[0], inertia[1], inertia[2], inertia[3], inertia[4], inertia[5],
-                                    inertia[6], inertia[7], inertia[8]);
-    const math::Matrix3x3<double> inv = math::inverse_spd(I);
-    for (int k = 0; k < 9; ++k) b.inv_inertia_body[k] = T(inv[k]);
-    return add_with_parts(b, parts, centre);
-  }
   Body<T> fixed_record(ShapeKind kind, const std::array<T, shape_param_rows>& param, const Vec& pos,
                        const Quat& q) const {
     Body<T> b;
@@ -195,43 +222,54 @@ class BodySet {
     return add(fixed_record(kind, param, pos, q));
   }
 
-  // The compound's mass properties, after its parts were checked (a body
-  // with none, or one that is not a primitive, is named before any arithmetic).
-  CompoundProperties<T> compound_properties(const std::vector<Part<T>>& parts, T mass, const Quat& q) const {
+  // A compound has 1 to max_parts valid parts, named before any arithmetic.
+  void require_parts(const std::vector<Part<T>>& parts) const {
     const std::size_t index = bodies_.size();
     if (parts.empty() || parts.size() > max_parts)
       throw InvalidBodyError(index, "parts", "a compound has 1 to 256 parts");
     for (std::size_t k = 0; k < parts.size(); ++k) validate_part(parts[k], k, index);
-    detail::require_unit(q, index, "q");
-    return solid_compound(parts, mass);
   }
-  // Where the centre `c` of a compound placed at pos, turned by q, lies.
-  static Vec centre_of(const Vec& pos, const CompoundProperties<T>& c, const Quat& q) {
-    const math::Matrix3x3<T> R = math::to_rotation_matrix(math::Quaternion<T>(q[0], q[1], q[2], q[3]));
-    Vec x = pos;
-    for (int r = 0; r < 3; ++r)
-      for (int k = 0; k < 3; ++k) x[r] += R(r, k) * c.centre[k];
-    return x;
-  }
-  // Appends the parts, moved to the centre, then the record that owns them
-  // (its part count, bounds and feature size from them).
-  std::size_t add_with_parts(Body<T>& b, const std::vector<Part<T>>& parts, const Vec& centre) {
-    T bound = 0, feature = std::numeric_limits<T>::infinity();
-    b.first_part = std::uint32_t(parts_.size());
+  // Appends the parts, moved to the centre of mass, and returns the type that
+  // names them (its bounds and feature size from them).
+  CompoundType<T> store_type(const std::vector<Part<T>>& parts, T mass, const std::array<T, 9>& inertia,
+                             const Vec& centre) {
+    CompoundType<T> t;
+    t.first_part = std::uint32_t(parts_.size());
+    t.count = std::uint32_t(parts.size());
+    t.mass = mass;
+    t.inertia = inertia;
+    t.centre = centre;
+    t.feature = std::numeric_limits<T>::infinity();
     for (Part<T> part : parts) {
       for (int r = 0; r < 3; ++r) part.pos[r] -= centre[r];
       const auto& p = part.shape_param;
       const T reach = std::sqrt(part.pos[0] * part.pos[0] + part.pos[1] * part.pos[1] + part.pos[2] * part.pos[2]) +
                       primitive_bound<T>(part.shape, p[0], p[1], p[2]);
-      bound = std::max(bound, reach);
-      feature = std::min(feature, primitive_feature_size<T>(part.shape, p[0], p[1], p[2]));
+      t.bound = std::max(t.bound, reach);
+      t.feature = std::min(t.feature, primitive_feature_size<T>(part.shape, p[0], p[1], p[2]));
       parts_.push_back(part);
     }
-    b.shape_param = {T(parts.size()), bound, feature, 0};
+    return t;
+  }
+  // The fixed record of a body of the type whose frame origin lies at pos:
+  // its centre of mass at pos + R(q) centre.
+  Body<T> compound_record(const Vec& pos, const CompoundType<T>& type, const Quat& q) const {
+    const math::Matrix3x3<T> R = math::to_rotation_matrix(math::Quaternion<T>(q[0], q[1], q[2], q[3]));
+    Vec x = pos;
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) x[r] += R(r, k) * type.centre[k];
+    Body<T> b = fixed_record(compound, {T(type.count), type.bound, type.feature, 0}, x, q);
+    b.first_part = type.first_part;
+    return b;
+  }
+  // Adds a compound whose parts are its own: a rejected body leaves no parts behind.
+  template <class F>
+  std::size_t with_own_parts(F&& add_body) {
+    const std::size_t mark = parts_.size();
     try {
-      return add(b);
+      return add_body();
     } catch (...) {
-      parts_.resize(b.first_part);  // a rejected body leaves no parts behind
+      parts_.resize(mark);
       throw;
     }
   }
