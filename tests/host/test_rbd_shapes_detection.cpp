@@ -53,7 +53,7 @@ Found brute_force_contacts(const BodySet<float>& s, const View& v, float margin)
       if (s[i].status != active && s[j].status != active) continue;
       const bool grid_pair = !obstacle(i) && !obstacle(j);
       if (grid_pair ? j < i : obstacle(i)) continue;  // each pair once, as detection orders it
-      for_each_manifold<all_shapes, float>(v, i, j, margin, false, [&](const Manifold<float>& mf) {
+      for_each_manifold<all_shapes, float>(v, i, j, margin, [&](const Manifold<float>& mf) {
         for (int p = 0; p < mf.count; ++p) expected.emplace_back(std::uint32_t(i), std::uint32_t(j), mf.points[p].feature);
       });
     }

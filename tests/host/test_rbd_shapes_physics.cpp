@@ -295,11 +295,50 @@ TEST_CASE("a union of two boxes is the box they tile: mass, inertia and sliding 
       set.add_compound(at, halves, 2.0, turn(-theta, 0, 1, 0));
     else
       set.add_box(at, h, 2.0, turn(-theta, 0, 1, 0));
-    return slope_acceleration<ConeFriction, AcceleratedJacobi<Gather>>(set, theta, mu, as_union ? 8 : 4);
+    return slope_acceleration<ConeFriction, AcceleratedJacobi<Gather>>(set, theta, mu, 4);
   };
   const double exact = g * (std::sin(theta) - mu * std::cos(theta));
   CHECK(slide(false) == Approx(exact).epsilon(0.01));
-  CHECK(slide(true) == Approx(exact).epsilon(0.01));  // its two faces' 8 points act as the box's 4
+  CHECK(slide(true) == Approx(exact).epsilon(0.01));  // its two faces' 8 points merged to the box's 4
+}
+
+TEST_CASE("a stack of unions that tile slabs stands like the slabs, four points per pair", "[rbd_physics][shapes][compound]") {
+  // Each union: 2 x 2 boxes of 1 x 1 x 0.5 tiling a 2 x 2 x 0.5 slab. Its 4
+  // parts meet the floor with 16 points and the union below with 16 or more;
+  // merged by normal, every body pair keeps 4 upright points, as the slabs do
+  // (beside the sideways ones where parts of two layers meet edge to edge).
+  std::vector<Part<double>> tiles;
+  for (double x : {-0.5, 0.5})
+    for (double y : {-0.5, 0.5}) tiles.push_back({box, {0.5, 0.5, 0.25, 0}, {x, y, 0}, {1, 0, 0, 0}});
+  const auto stand = [&](bool as_unions) {
+    BodySet<double> set;
+    set.add_plane({0, 0, 1}, 0);
+    for (int k = 0; k < 4; ++k) {
+      const std::array<double, 3> at{0.05 * (k % 2), 0, 0.25 + 0.5 * k};
+      if (as_unions)
+        set.add_compound(at, tiles, 2.0);
+      else
+        set.add_box(at, {1, 1, 0.25}, 2.0);
+    }
+    World<device::cpu, double> w(set, SolverSettings<double>{});
+    for (int i = 0; i < 1000; ++i) {
+      const std::size_t n = w.step().solver.contacts;
+      auto& c = w.contacts();
+      std::size_t upright = 0;
+      for (std::size_t k = 0; k < n; ++k) upright += std::fabs(c.n(k, 2)) > 0.999;
+      REQUIRE(upright == 16);
+      REQUIRE(n <= 16 * MergedManifolds<double>::max_sets);
+    }
+    w.syncHost();
+    return set;
+  };
+  const BodySet<double> unions = stand(true), slabs = stand(false);
+  for (int k = 1; k <= 4; ++k) {
+    INFO("layer " << k);
+    CHECK(std::fabs(unions[k].pos[0] - 0.05 * ((k - 1) % 2)) < 0.005);
+    CHECK(std::fabs(unions[k].pos[2] - (0.25 + 0.5 * (k - 1))) < 0.005);
+    CHECK(std::fabs(unions[k].pos[2] - slabs[k].pos[2]) < 1e-3);
+  }
 }
 
 namespace {

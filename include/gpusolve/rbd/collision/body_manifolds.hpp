@@ -1,6 +1,7 @@
 // The manifolds of two bodies: one from the shape-pair table for two
-// primitives; where a body is a compound, one per pair of parts that touch,
-// each part placed in the world and met through its own kind's pairs.
+// primitives; where a body is a compound, those of its pairs of parts that
+// touch, each part placed in the world and met through its own kind's pairs,
+// merged by normal.
 #pragma once
 
 #include <cstddef>
@@ -10,6 +11,7 @@
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/bodies/shapes.hpp"
 #include "gpusolve/rbd/collision/manifold.hpp"
+#include "gpusolve/rbd/collision/merged_manifolds.hpp"
 #include "gpusolve/rbd/collision/narrow_phase.hpp"
 #include "gpusolve/rbd/collision/placed_shape.hpp"
 
@@ -64,32 +66,34 @@ GPUSOLVE_HD bool bounds_meet(std::uint8_t ka, const PlacedShape<T>& a, std::uint
 
 // Calls f(manifold) for each manifold of body i (a) against body j (b) that
 // has points below the margin, over the kinds of the mask M: one for two
-// primitives; for a compound, one per pair of parts whose bounds meet, parts
-// in order (a's outer, b's inner), or in the opposite order where `reverse`.
+// primitives; where a body is a compound, the part pairs' manifolds (parts
+// whose bounds meet, a's outer, b's inner) merged by normal (MergedManifolds).
 template <ShapeMask M, class T, class View, class F>
-GPUSOLVE_HD void for_each_manifold(const View& b, std::size_t i, std::size_t j, T margin, bool reverse, F&& f) {
-  if constexpr ((M & shape_bit(compound)) == 0) {
-    (void)reverse;
-    const Manifold<T> m = collide<M, T>(b.shape[i], placed_shape<T>(b, i), b.shape[j], placed_shape<T>(b, j), margin);
-    if (m.count > 0) f(m);
-  } else {
-    const std::uint32_t na = detail::part_count(b, i), nb = detail::part_count(b, j);
-    for (std::uint32_t sa = 0; sa < na; ++sa) {
-      const std::uint32_t pa = reverse ? na - 1 - sa : sa;
-      std::uint8_t ka;
-      const PlacedShape<T> A = detail::placed_primitive<T>(b, i, pa, ka);
-      for (std::uint32_t sb = 0; sb < nb; ++sb) {
-        const std::uint32_t pb = reverse ? nb - 1 - sb : sb;
-        std::uint8_t kb;
-        const PlacedShape<T> B = detail::placed_primitive<T>(b, j, pb, kb);
-        if (na * nb > 1 && !detail::bounds_meet(ka, A, kb, B, margin)) continue;
-        Manifold<T> m = collide<M & primitives, T>(ka, A, kb, B, margin);
-        if (m.count == 0) continue;
-        for (int k = 0; k < m.count; ++k) m.points[k].feature = part_feature(m.points[k].feature, pa, pb);
-        f(m);
+GPUSOLVE_HD void for_each_manifold(const View& b, std::size_t i, std::size_t j, T margin, F&& f) {
+  if constexpr ((M & shape_bit(compound)) != 0) {
+    if (b.shape[i] == compound || b.shape[j] == compound) {
+      const std::uint32_t na = detail::part_count(b, i), nb = detail::part_count(b, j);
+      MergedManifolds<T> merged;
+      for (std::uint32_t pa = 0; pa < na; ++pa) {
+        std::uint8_t ka;
+        const PlacedShape<T> A = detail::placed_primitive<T>(b, i, pa, ka);
+        for (std::uint32_t pb = 0; pb < nb; ++pb) {
+          std::uint8_t kb;
+          const PlacedShape<T> B = detail::placed_primitive<T>(b, j, pb, kb);
+          if (na * nb > 1 && !detail::bounds_meet(ka, A, kb, B, margin)) continue;
+          Manifold<T> m = collide<M & primitives, T>(ka, A, kb, B, margin);
+          if (m.count == 0) continue;
+          for (int k = 0; k < m.count; ++k) m.points[k].feature = part_feature(m.points[k].feature, pa, pb);
+          if (!merged.merge(m)) f(m);
+        }
       }
+      merged.for_each(f);
+      return;
     }
   }
+  const Manifold<T> m =
+      collide<M & primitives, T>(b.shape[i], placed_shape<T>(b, i), b.shape[j], placed_shape<T>(b, j), margin);
+  if (m.count > 0) f(m);
 }
 
 }  // namespace gpusolve::rbd

@@ -84,16 +84,14 @@ struct ContactWalk {
     return within_margin(sphere_sphere(pa, b.radius[i], math::load3<T>(b.pos, j), b.radius[j]), margin);
   }
 
-  // Calls f(m) for each manifold with points of the pair (i, j), in order or,
-  // where `reverse`, in the opposite order.
+  // Calls f(m) for each manifold with points of the pair (i, j).
   template <class F>
-  GPUSOLVE_HD void manifolds(std::size_t i, std::uint32_t j, bool reverse, F&& f) const {
+  GPUSOLVE_HD void manifolds(std::size_t i, std::uint32_t j, F&& f) const {
     if constexpr (spheres_only) {
-      (void)reverse;
       const Manifold<T> m = sphere_manifold(i, j);
       if (m.count > 0) f(m);
     } else {
-      for_each_manifold<M, T>(b, i, j, margin, reverse, f);
+      for_each_manifold<M, T>(b, i, j, margin, f);
     }
   }
   // The one manifold of two primitives (true; no points where their gap
@@ -107,7 +105,7 @@ struct ContactWalk {
   // The number of contact points of the pair (i, j).
   GPUSOLVE_HD std::uint32_t points(std::size_t i, std::uint32_t j) const {
     std::uint32_t count = 0;
-    manifolds(i, j, false, [&](const Manifold<T>& m) { count += std::uint32_t(m.count); });
+    manifolds(i, j, [&](const Manifold<T>& m) { count += std::uint32_t(m.count); });
     return count;
   }
 

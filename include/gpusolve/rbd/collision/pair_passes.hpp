@@ -70,7 +70,7 @@ struct PointWriter {
   GPUSOLVE_HD void pair(std::uint32_t first, std::uint32_t last, std::size_t i, std::uint32_t j) const {
     std::uint32_t o = first;
     math::Vector3<T> normal;
-    walk.manifolds(i, j, false, [&](const Manifold<T>& m) {
+    walk.manifolds(i, j, [&](const Manifold<T>& m) {
       for (int k = 0; k < m.count && o < last; ++k) write(o++, i, j, m, k);
       normal = m.n;
     });
