@@ -2,7 +2,7 @@
 // solver method and iteration budget: time per step against the largest
 // penetration and the LCP residual it bought, and whether each step converged.
 //
-// Run: gpusolve_bench_atlas --scene pile|cubes|mixed|clumps|column|pyramid|stack|field|slabs|hopper [--n 10000,100000] [--ratios 1,100,1000]
+// Run: gpusolve_bench_atlas --scene pile|cubes|mixed|clumps|unions|column|pyramid|stack|field|slabs|hopper [--n 10000,100000] [--ratios 1,100,1000]
 //        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,s4x5,tol0.02,check10]
 //        [--margins 0.1]
 //        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]
@@ -15,6 +15,8 @@
 // clumps: N clumps of three spheres of radius 1 on a line 1.2 apart, one
 //         compound type, turned at random on a lattice of spacing 4.5 in the
 //         open box (bench/shared_pile.hpp); steps as for the pile.
+// unions: N unions of four parts (an L of cubes; a capsule with a box head and
+//         two spheres) on the clump pile's lattice; steps as for the cubes.
 // pyramid: a pyramid of unit cubes, --n layers (20: 210 boxes); 4 000 steps (10 s).
 // stack:  --n unit cubes stacked (20); 4 000 steps (10 s).
 // field:  20 pyramids of --n layers (20: 4 200 boxes); 4 000 steps (10 s).
@@ -177,6 +179,7 @@ rbd::BodySet<T> scene_set(const Run& r) {
   if (r.scene == "cubes") return cube_pile<T>(r.n);
   if (r.scene == "mixed") return mixed_pile<T>(r.n);
   if (r.scene == "clumps") return clump_pile<T>(r.n);
+  if (r.scene == "unions") return union_pile<T>(r.n);
   if (r.scene == "pyramid") return box_pyramid<T>(r.n);
   if (r.scene == "stack") return box_stack<T>(r.n);
   if (r.scene == "field") return pyramid_field<T>(r.n);
@@ -253,7 +256,8 @@ Result run(const Run& r) {
       double d2 = 0;
       for (int c = 0; c < 3; ++c) d2 += std::pow(double(set[i].pos[c]) - double(start[i].pos[c]), 2);
       const auto& p = set[i].shape_param;
-      const double size = set[i].shape == rbd::box ? std::min({p[0], p[1], p[2]}) : p[0];
+      const double size = set[i].shape == rbd::compound ? double(p[2])  // its smallest feature
+                                                        : double(rbd::primitive_feature_size<T>(set[i].shape, p[0], p[1], p[2]));
       out.drift = std::max(out.drift, std::sqrt(d2) / size);
     }
   if (r.scene == "column") out.fell = std::fabs(out.height - double(2 * r.n - 1)) > 1.0;
@@ -291,7 +295,7 @@ const char* verdict(const Run& r, const Result& x) {
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "--scene pile|cubes|mixed|clumps|column|pyramid|stack|field|slabs|hopper [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
+      "--scene pile|cubes|mixed|clumps|unions|column|pyramid|stack|field|slabs|hopper [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
       "[--warm LIST] [--dts LIST] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -309,7 +313,7 @@ int main(int argc, char** argv) {
     else if (a == "--csv") o.csv = option_value(argc, argv, i);
     else usage_exit(argv[0], usage, a);
   }
-  const std::vector<std::string> scenes{"pile", "cubes", "mixed", "clumps", "column", "pyramid", "stack", "field", "slabs", "hopper"};
+  const std::vector<std::string> scenes{"pile", "cubes", "mixed", "clumps", "unions", "column", "pyramid", "stack", "field", "slabs", "hopper"};
   if (std::find(scenes.begin(), scenes.end(), o.scene) == scenes.end()) usage_exit(argv[0], usage, "--scene " + o.scene);
   if (o.backend != "gpu" && o.backend != "cpu") usage_exit(argv[0], usage, "--backend " + o.backend);
   try {
@@ -351,7 +355,7 @@ int main(int argc, char** argv) {
                   r.steps = o.scene == "column"                        ? 2000
                             : o.scene == "hopper"                      ? 600
                             : is_tower                                 ? 4000
-                            : o.scene == "cubes" || o.scene == "mixed" ? 2400
+                            : o.scene == "cubes" || o.scene == "mixed" || o.scene == "unions" ? 2400
                             : n <= 10000                               ? 1200
                                                                        : 900;
                 if (r.margin < 0) r.margin = double(SolverSettings<T>{}.margin);

@@ -1,6 +1,6 @@
 // The atlas's scenes as BodySets: the shared sphere and cube piles of docs/piles.md
 // (the scenes peer engines are measured on), a mixed pile, a column of spheres
-// of alternating mass, a pile of sphere clumps, a box pyramid and a box stack.
+// of alternating mass, a pile of sphere clumps, one of 4-part unions, a box pyramid and a box stack.
 #pragma once
 
 #include <cmath>
@@ -129,6 +129,36 @@ rbd::BodySet<T> clump_pile(std::size_t n) {
   const rbd::CompoundType<T> type = set.add_compound_type(line, T(3));
   const std::size_t L = jittered_lattice(n, 4.5, 2.3, [&](std::size_t, const std::array<double, 3>& c) {
     set.add_compound({T(c[0]), T(c[1]), T(c[2])}, type, turns.next<T>());
+  });
+  add_open_box(set, L, 4.5);
+  return set;
+}
+
+// The union pile (issue 36): N unions of four parts on the clump pile's
+// lattice, turned at random, of two types in turn, both of mass 4: an L of four
+// cubes (half extent 0.5; three in a row, one on the first), and a hammer of a
+// capsule handle (radius 0.3, half length 1), a box head (half extents 0.3,
+// 0.7, 0.3) and a sphere (radius 0.4) at each end of the head; each reaches
+// less than 2.25 from its centre of mass.
+template <class T>
+rbd::BodySet<T> union_pile(std::size_t n) {
+  rbd::BodySet<T> set;
+  RandomTurns turns;
+  const std::array<T, 4> unturned{1, 0, 0, 0};
+  const std::array<T, 4> cube{T(0.5), T(0.5), T(0.5), 0};
+  const rbd::CompoundType<T> l = set.add_compound_type({{rbd::box, cube, {T(-1), 0, 0}, unturned},
+                                                        {rbd::box, cube, {0, 0, 0}, unturned},
+                                                        {rbd::box, cube, {T(1), 0, 0}, unturned},
+                                                        {rbd::box, cube, {T(-1), 0, T(1)}, unturned}},
+                                                       T(4));
+  const rbd::CompoundType<T> hammer =
+      set.add_compound_type({{rbd::capsule, {T(0.3), T(1.0), 0, 0}, {T(-0.2), 0, 0}, unturned},
+                             {rbd::box, {T(0.3), T(0.7), T(0.3), 0}, {T(1.2), 0, 0}, unturned},
+                             {rbd::sphere, {T(0.4), 0, 0, 0}, {T(1.2), T(0.9), 0}, unturned},
+                             {rbd::sphere, {T(0.4), 0, 0, 0}, {T(1.2), T(-0.9), 0}, unturned}},
+                            T(4));
+  const std::size_t L = jittered_lattice(n, 4.5, 2.3, [&](std::size_t i, const std::array<double, 3>& c) {
+    set.add_compound({T(c[0]), T(c[1]), T(c[2])}, i % 2 == 0 ? l : hammer, turns.next<T>());
   });
   add_open_box(set, L, 4.5);
   return set;

@@ -52,6 +52,15 @@ GPUSOLVE_HD PlacedShape<T> placed_primitive(const View& b, std::size_t i, std::u
   return s;
 }
 
+// Whether a placed primitive's bounding sphere comes within the margin of
+// body j's (Bodies::radius; a plane's is infinite).
+template <class T, class View>
+GPUSOLVE_HD bool reaches_body(std::uint8_t ka, const PlacedShape<T>& a, const View& b, std::size_t j, T margin) {
+  const T reach = primitive_bound<T>(ka, a.p[0], a.p[1], a.p[2]) + b.radius[j] + margin;
+  const math::Vector3<T> d(a.x - math::load3<T>(b.pos, j));
+  return !(math::dot(d, d) >= reach * reach);
+}
+
 // Whether two placed primitives' bounding spheres come within the margin.
 template <class T>
 GPUSOLVE_HD bool bounds_meet(std::uint8_t ka, const PlacedShape<T>& a, std::uint8_t kb, const PlacedShape<T>& b,
@@ -66,8 +75,9 @@ GPUSOLVE_HD bool bounds_meet(std::uint8_t ka, const PlacedShape<T>& a, std::uint
 
 // Calls f(manifold) for each manifold of body i (a) against body j (b) that
 // has points below the margin, over the kinds of the mask M: one for two
-// primitives; where a body is a compound, the part pairs' manifolds (parts
-// whose bounds meet, a's outer, b's inner) merged by normal (MergedManifolds).
+// primitives; where a body is a compound, the part pairs' manifolds (a's
+// parts that reach body j, b's parts whose bounds meet them) merged by normal
+// (MergedManifolds).
 template <ShapeMask M, class T, class View, class F>
 GPUSOLVE_HD void for_each_manifold(const View& b, std::size_t i, std::size_t j, T margin, F&& f) {
   if constexpr ((M & shape_bit(compound)) != 0) {
@@ -77,6 +87,7 @@ GPUSOLVE_HD void for_each_manifold(const View& b, std::size_t i, std::size_t j, 
       for (std::uint32_t pa = 0; pa < na; ++pa) {
         std::uint8_t ka;
         const PlacedShape<T> A = detail::placed_primitive<T>(b, i, pa, ka);
+        if (na > 1 && !detail::reaches_body(ka, A, b, j, margin)) continue;  // a part far from body j
         for (std::uint32_t pb = 0; pb < nb; ++pb) {
           std::uint8_t kb;
           const PlacedShape<T> B = detail::placed_primitive<T>(b, j, pb, kb);
