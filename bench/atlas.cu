@@ -257,7 +257,7 @@ Result run(const Run& r) {
       for (int c = 0; c < 3; ++c) d2 += std::pow(double(set[i].pos[c]) - double(start[i].pos[c]), 2);
       const auto& p = set[i].shape_param;
       const double size = set[i].shape == rbd::compound ? double(p[2])  // its smallest feature
-                                                        : double(rbd::primitive_feature_size<T>(set[i].shape, p[0], p[1], p[2]));
+                                                        : double(rbd::shape_feature_size<T>(set[i].shape, p[0], p[1], p[2]));
       out.drift = std::max(out.drift, std::sqrt(d2) / size);
     }
   if (r.scene == "column") out.fell = std::fabs(out.height - double(2 * r.n - 1)) > 1.0;

@@ -235,3 +235,31 @@ TEST_CASE("bad compound input names the body and the part's field, and adds noth
   set[1].shape_param[0] = 0;
   require_bad([&] { set.validate(); }, 1, "parts");
 }
+
+TEST_CASE("each shape kind's facts come from its traits, and a value that names no kind is refused", "[rbd][bodies]") {
+  // Bounds and feature sizes from the parameter slots, against the closed forms.
+  CHECK(shape_bound<double>(sphere, 0.7, 0, 0) == 0.7);
+  CHECK(shape_bound<double>(box, 1, 2, 2) == Approx(3.0));
+  CHECK(shape_bound<double>(capsule, 0.5, 1.5, 0) == 2.0);
+  CHECK(std::isinf(shape_bound<double>(plane, 0, 0, 1)));
+  CHECK(shape_bound<double>(compound, 3, 2.5, 0.2) == 2.5);  // (parts, bound, feature)
+  CHECK(shape_feature_size<double>(box, 1, 0.3, 2) == 0.3);
+  CHECK(shape_feature_size<double>(capsule, 0.5, 1.5, 0) == 0.5);
+  CHECK(shape_feature_size<double>(compound, 3, 2.5, 0.2) == 0.2);
+  CHECK(std::isinf(shape_feature_size<double>(plane, 0, 0, 1)));
+  // Names, which kinds a compound may hold, and the kinds as the mask's bits.
+  const char* names[shape_kinds] = {"sphere", "box", "plane", "capsule", "compound"};
+  for (int k = 0; k < shape_kinds; ++k) CHECK(std::string(shape_name(std::uint8_t(k))) == names[k]);
+  CHECK(std::string(shape_name(7)) == "unknown");
+  CHECK(part_kinds == (shape_bit(sphere) | shape_bit(box) | shape_bit(capsule)));
+  CHECK(primitives == (all_shapes & ~shape_bit(compound)));
+  CHECK(!part_kind(7));
+  // A record of no kind, and a moving plane, are refused by name.
+  BodySet<float> s;
+  s.add_sphere({0.f, 0.f, 0.f}, 1.f, 1.f);
+  Body<float> b = s[0];
+  b.shape = ShapeKind(7);
+  require_bad([&] { s.add(b); }, 1, "shape");
+  CHECK(solid_primitive<float>(box, {1.f, 1.f, 1.f, 0.f}, 8.f).volume == 8.f);
+  CHECK_THROWS_AS(solid_primitive<float>(plane, {0.f, 0.f, 1.f, 0.f}, 1.f), InvalidArgumentError);
+}

@@ -84,7 +84,7 @@ class BodyManager {
       std::ostringstream os;
       os << "this World was not compiled for";
       for (int k = 0; k < shape_kinds; ++k)
-        if (kinds & ~compiled_ & shape_bit(ShapeKind(k))) os << ' ' << shape_names[k];
+        if (kinds & ~compiled_ & shape_bit(ShapeKind(k))) os << ' ' << shape_name(std::uint8_t(k));
       os << "; give World the Shapes it needs (all_shapes holds every kind)";
       throw InvalidBodyError(i, "shape", os.str());
     }

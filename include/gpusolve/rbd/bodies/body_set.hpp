@@ -244,9 +244,9 @@ class BodySet {
       for (int r = 0; r < 3; ++r) part.pos[r] -= centre[r];
       const auto& p = part.shape_param;
       const T reach = std::sqrt(part.pos[0] * part.pos[0] + part.pos[1] * part.pos[1] + part.pos[2] * part.pos[2]) +
-                      primitive_bound<T>(part.shape, p[0], p[1], p[2]);
+                      shape_bound<T>(part.shape, p[0], p[1], p[2]);
       t.bound = std::max(t.bound, reach);
-      t.feature = std::min(t.feature, primitive_feature_size<T>(part.shape, p[0], p[1], p[2]));
+      t.feature = std::min(t.feature, shape_feature_size<T>(part.shape, p[0], p[1], p[2]));
       parts_.push_back(part);
     }
     return t;

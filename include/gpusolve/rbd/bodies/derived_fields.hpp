@@ -40,18 +40,15 @@ struct UpdateBody {
     }
   }
   GPUSOLVE_HD T bounding_radius(std::size_t i) const {
-    if (b.shape[i] == compound) return b.shape_param(i, 1);
-    return primitive_bound<T>(b.shape[i], b.shape_param(i, 0), b.shape_param(i, 1), b.shape_param(i, 2));
+    return shape_bound<T>(b.shape[i], b.shape_param(i, 0), b.shape_param(i, 1), b.shape_param(i, 2));
   }
 };
 
-// The size penetration is measured against (shapes.hpp); a compound's is its
-// smallest part's.
+// The size penetration is measured against (shapes.hpp's shape_feature_size).
 template <class View>
 GPUSOLVE_HD auto feature_size(const View& b, std::size_t i) {
   using T = std::remove_cv_t<std::remove_reference_t<decltype(b.shape_param(i, 0))>>;
-  if (b.shape[i] == compound) return T(b.shape_param(i, 2));
-  return primitive_feature_size<T>(b.shape[i], b.shape_param(i, 0), b.shape_param(i, 1), b.shape_param(i, 2));
+  return shape_feature_size<T>(b.shape[i], b.shape_param(i, 0), b.shape_param(i, 1), b.shape_param(i, 2));
 }
 
 // Recomputes the derived fields of bodies [first, last) without touching motion

@@ -1,11 +1,13 @@
-// Mass properties of the solid primitives: volume, and the inertia tensor
-// about the centre of mass in the body frame for a given mass.
+// Mass properties of a part by its kind and of a compound of parts: volume,
+// and the inertia tensor about the centre of mass in the body frame for a
+// given mass (each kind's own solid is in its header, sphere_shape.hpp, ...).
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <vector>
 
+#include "gpusolve/core/error.hpp"
 #include "gpusolve/math/matrix_functions.hpp"
 #include "gpusolve/math/quaternion.hpp"
 #include "gpusolve/math/rotation.hpp"
@@ -14,47 +16,13 @@
 
 namespace gpusolve::rbd {
 
-inline constexpr double pi = 3.14159265358979323846;
-
-// The principal inertia (about the body axes) and volume of each solid.
-template <class T>
-struct SolidProperties {
-  T volume;
-  std::array<T, 3> inertia;  // for the given mass
-};
-
-template <class T>
-SolidProperties<T> solid_sphere(T r, T mass) {
-  const T I = T(2) / T(5) * mass * r * r;
-  return {T(4 * pi / 3) * r * r * r, {I, I, I}};
-}
-
-// Half extents h: I_x = m (h_y^2 + h_z^2) / 3, and so on.
-template <class T>
-SolidProperties<T> solid_box(const std::array<T, 3>& h, T mass) {
-  const T x = h[0] * h[0], y = h[1] * h[1], z = h[2] * h[2];
-  return {8 * h[0] * h[1] * h[2], {mass * (y + z) / 3, mass * (x + z) / 3, mass * (x + y) / 3}};
-}
-
-// Radius r, core segment of half length L along x: a cylinder of length 2L
-// and two hemispheres, the mass shared by volume; each hemisphere's centre of
-// mass lies 3r/8 beyond the segment's end.
-template <class T>
-SolidProperties<T> solid_capsule(T r, T L, T mass) {
-  const T H = 2 * L;
-  const T cylinder = T(pi) * r * r * H, balls = T(4 * pi / 3) * r * r * r;
-  const T mc = mass * cylinder / (cylinder + balls), ms = mass - mc;
-  const T axial = mc * r * r / 2 + ms * T(2) / T(5) * r * r;
-  const T across = mc * (r * r / 4 + H * H / 12) + ms * (T(2) / T(5) * r * r + H * H / 4 + T(3) / T(8) * H * r);
-  return {cylinder + balls, {axial, across, across}};
-}
-
-// A sphere, box or capsule by its kind and shape parameters (shapes.hpp).
+// A sphere, box or capsule by its kind and shape parameters (its
+// ShapeTraits' solid); another kind has no mass of its own.
 template <class T>
 SolidProperties<T> solid_primitive(ShapeKind kind, const std::array<T, shape_param_rows>& p, T mass) {
-  if (kind == box) return solid_box<T>({p[0], p[1], p[2]}, mass);
-  if (kind == capsule) return solid_capsule(p[0], p[1], mass);
-  return solid_sphere(p[0], mass);
+  return visit_kind<SolidProperties<T>, part_kinds>(
+      kind, [&](auto k) { return ShapeTraits<decltype(k)::value>::solid(p, mass); },
+      []() -> SolidProperties<T> { throw InvalidArgumentError("gpusolve: only a sphere, box or capsule is solid alone"); });
 }
 
 // A compound of uniform density: the parts share the mass by volume (where

@@ -14,10 +14,6 @@
 
 namespace gpusolve::rbd {
 
-// A compound holds at most this many parts: a contact's feature id keeps 8
-// bits for the part of each body (collision/body_manifolds.hpp).
-inline constexpr std::size_t max_parts = 256;
-
 // One part as a user gives it: a sphere, box or capsule (shape parameters as
 // in shapes.hpp), its centre and orientation (w, x, y, z) in the compound's frame.
 template <class T = float>

@@ -12,27 +12,11 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/error.hpp"
 #include "gpusolve/rbd/bodies/body.hpp"
+#include "gpusolve/rbd/bodies/invalid_body_error.hpp"
 #include "gpusolve/rbd/bodies/parts.hpp"
+#include "gpusolve/rbd/bodies/shapes.hpp"
 
 namespace gpusolve::rbd {
-
-// A body's field holds a value the solver cannot work with; names both.
-class InvalidBodyError : public InvalidArgumentError {
- public:
-  InvalidBodyError(std::size_t body, std::string field, const std::string& why)
-      : InvalidArgumentError(message(body, field, why)), body_(body), field_(std::move(field)) {}
-  std::size_t body() const noexcept { return body_; }
-  const std::string& field() const noexcept { return field_; }
-
- private:
-  static std::string message(std::size_t body, const std::string& field, const std::string& why) {
-    std::ostringstream os;
-    os << "gpusolve: body " << body << ", field `" << field << "`: " << why;
-    return os.str();
-  }
-  std::size_t body_;
-  std::string field_;
-};
 
 // A body's state (position, orientation or velocity) became NaN or infinite
 // on the backend: found before a step changed anything, so that step was not
@@ -96,31 +80,15 @@ void require_unit(const std::array<T, 4>& q, std::size_t body, const std::string
   if (std::abs(qq - T(1)) > T(1e-3)) throw InvalidBodyError(body, field, "is not a unit quaternion");
 }
 
-// The shape parameters p of a primitive of body `index`, fields named after
-// `prefix` (empty for the body itself, "parts[k]." for a compound's part).
+// The shape parameters p of a shape of body `index` (its ShapeTraits'
+// validate), fields named after `prefix` (empty for the body itself,
+// "parts[k]." for a compound's part).
 template <class T>
-void validate_primitive(std::uint8_t shape, const std::array<T, shape_param_rows>& p, std::size_t index,
-                        const std::string& prefix) {
-  switch (shape) {
-    case sphere:
-      if (!(p[0] > 0)) throw InvalidBodyError(index, prefix + "radius", "must be positive");
-      break;
-    case box:
-      for (int k = 0; k < 3; ++k)
-        if (!(p[k] > 0)) throw InvalidBodyError(index, prefix + "half_extents", "must be positive");
-      break;
-    case plane: {
-      const T nn = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
-      if (std::abs(nn - T(1)) > T(1e-4)) throw InvalidBodyError(index, prefix + "normal", "must have unit length");
-      break;
-    }
-    case capsule:
-      if (!(p[0] > 0)) throw InvalidBodyError(index, prefix + "radius", "must be positive");
-      if (!(p[1] > 0)) throw InvalidBodyError(index, prefix + "half_length", "must be positive (a sphere has none)");
-      break;
-    default:
-      throw InvalidBodyError(index, prefix + "shape", "is not a ShapeKind");
-  }
+void validate_shape(std::uint8_t shape, const std::array<T, shape_param_rows>& p, std::size_t index,
+                    const std::string& prefix) {
+  visit_kind<void>(
+      shape, [&](auto k) { ShapeTraits<decltype(k)::value>::validate(p, index, prefix); },
+      [&] { throw InvalidBodyError(index, prefix + "shape", "is not a ShapeKind"); });
 }
 
 }  // namespace detail
@@ -137,7 +105,7 @@ void validate_part(const Part<T>& part, std::size_t k, std::size_t index) {
   detail::require_finite(part.pos, index, (prefix + "pos").c_str());
   detail::require_finite(part.q, index, (prefix + "q").c_str());
   detail::require_unit(part.q, index, prefix + "q");
-  detail::validate_primitive(part.shape, part.shape_param, index, prefix);
+  detail::validate_shape(part.shape, part.shape_param, index, prefix);
 }
 
 // Throws InvalidBodyError naming `index` and the first offending field. Checks:
@@ -160,17 +128,11 @@ void validate_body(const Body<T>& b, std::size_t index) {
   if (b.status != active && b.status != fixed && b.status != removed)
     throw InvalidBodyError(index, "status", "is not a BodyStatus");
   detail::require_unit(b.q, index, "q");
-  if (b.shape == compound) {
-    const T count = b.shape_param[0];
-    if (!(count >= 1) || count > T(max_parts) || count != T(std::size_t(count)))
-      throw InvalidBodyError(index, "parts", "a compound has 1 to 256 parts");
-    if (!(b.shape_param[1] > 0) || !(b.shape_param[2] > 0))
-      throw InvalidBodyError(index, "shape_param", "a compound's bounds come from its parts (BodySet::add_compound)");
-  } else {
-    detail::validate_primitive(b.shape, b.shape_param, index, "");
-  }
+  detail::validate_shape(b.shape, b.shape_param, index, "");
   const bool moving = b.status == active;
-  if (b.shape == plane && moving) throw InvalidBodyError(index, "status", "planes must be fixed");
+  if (moving && !visit_kind<bool>(
+                    b.shape, [](auto k) { return ShapeTraits<decltype(k)::value>::moves; }, [] { return false; }))
+    throw InvalidBodyError(index, "status", std::string(shape_name(b.shape)) + "s must be fixed");
   if (!std::isfinite(b.inv_mass) || b.inv_mass < 0)
     throw InvalidBodyError(index, "mass", "must be positive and finite");
   if (moving) {

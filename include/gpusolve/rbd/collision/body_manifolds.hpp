@@ -56,7 +56,7 @@ GPUSOLVE_HD PlacedShape<T> placed_primitive(const View& b, std::size_t i, std::u
 // body j's (Bodies::radius; a plane's is infinite).
 template <class T, class View>
 GPUSOLVE_HD bool reaches_body(std::uint8_t ka, const PlacedShape<T>& a, const View& b, std::size_t j, T margin) {
-  const T reach = primitive_bound<T>(ka, a.p[0], a.p[1], a.p[2]) + b.radius[j] + margin;
+  const T reach = shape_bound<T>(ka, a.p[0], a.p[1], a.p[2]) + b.radius[j] + margin;
   const math::Vector3<T> d(a.x - math::load3<T>(b.pos, j));
   return !(math::dot(d, d) >= reach * reach);
 }
@@ -65,7 +65,7 @@ GPUSOLVE_HD bool reaches_body(std::uint8_t ka, const PlacedShape<T>& a, const Vi
 template <class T>
 GPUSOLVE_HD bool bounds_meet(std::uint8_t ka, const PlacedShape<T>& a, std::uint8_t kb, const PlacedShape<T>& b,
                              T margin) {
-  const T reach = primitive_bound<T>(ka, a.p[0], a.p[1], a.p[2]) + primitive_bound<T>(kb, b.p[0], b.p[1], b.p[2]) +
+  const T reach = shape_bound<T>(ka, a.p[0], a.p[1], a.p[2]) + shape_bound<T>(kb, b.p[0], b.p[1], b.p[2]) +
                   margin;
   const math::Vector3<T> d(a.x - b.x);
   return !(math::dot(d, d) >= reach * reach);  // a plane's infinite reach always meets

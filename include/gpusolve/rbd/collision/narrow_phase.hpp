@@ -51,65 +51,49 @@ GPUSOLVE_SHAPE_PAIR(plane, capsule, capsule_plane(b, a, margin).flipped())
 GPUSOLVE_SHAPE_PAIR(capsule, capsule, capsule_capsule(a, b, margin))
 #undef GPUSOLVE_SHAPE_PAIR
 
-namespace detail {
-
-// Body a of kind A against body b of the runtime kind kb, over the kinds of
-// the mask M only (the others are never compiled in).
-template <ShapeMask M, ShapeKind A, class T>
-GPUSOLVE_HD Manifold<T> collide_with(const PlacedShape<T>& a, std::uint8_t kb, const PlacedShape<T>& b, T margin) {
-  const auto pair = [&](auto kind) -> Manifold<T> {
-    constexpr ShapeKind B = decltype(kind)::value;
-    if constexpr ((M & shape_bit(B)) == 0)
-      return {};
-    else if constexpr (A <= B)
-      return ShapePair<A, B>::collide(a, b, margin);
-    else
-      return ShapePair<B, A>::collide(b, a, margin).flipped();
-  };
-  switch (kb) {
-    case sphere: return pair(std::integral_constant<ShapeKind, sphere>{});
-    case box: return pair(std::integral_constant<ShapeKind, box>{});
-    case plane: return pair(std::integral_constant<ShapeKind, plane>{});
-    case capsule: return pair(std::integral_constant<ShapeKind, capsule>{});
-    default: return {};
-  }
-}
-
-}  // namespace detail
-
 // The manifold of body a (kind ka) against body b (kind kb), with the kinds a
-// scene holds in M; a kind outside M gives no points. Not inlined on the
+// scene holds in M; a kind outside M gives no points, and so does a compound,
+// which is met part by part (body_manifolds.hpp). Not inlined on the
 // device: the contact count and the contact write share one copy per M.
 template <ShapeMask M = all_shapes, class T>
 GPUSOLVE_HD_NOINLINE Manifold<T> collide(std::uint8_t ka, const PlacedShape<T>& a, std::uint8_t kb, const PlacedShape<T>& b,
                                 T margin) {
-  const auto with = [&](auto kind) -> Manifold<T> {
-    constexpr ShapeKind A = decltype(kind)::value;
-    if constexpr ((M & shape_bit(A)) == 0)
-      return {};
-    else
-      return detail::collide_with<M, A>(a, kb, b, margin);
-  };
-  switch (ka) {
-    case sphere: return with(std::integral_constant<ShapeKind, sphere>{});
-    case box: return with(std::integral_constant<ShapeKind, box>{});
-    case plane: return with(std::integral_constant<ShapeKind, plane>{});
-    case capsule: return with(std::integral_constant<ShapeKind, capsule>{});
-    default: return {};
-  }
+  const auto none = [] { return Manifold<T>{}; };
+  return visit_kind<Manifold<T>, M & primitives>(
+      ka,
+      [&](auto kind_a) {
+        constexpr ShapeKind A = decltype(kind_a)::value;
+        return visit_kind<Manifold<T>, M & primitives>(
+            kb,
+            [&](auto kind_b) -> Manifold<T> {
+              constexpr ShapeKind B = decltype(kind_b)::value;
+              if constexpr (A <= B)
+                return ShapePair<A, B>::collide(a, b, margin);
+              else
+                return ShapePair<B, A>::collide(b, a, margin).flipped();
+            },
+            none);
+      },
+      none);
 }
 
-// Body i of a Bodies view as the narrow phase reads it: only boxes and
-// capsules need their rotation (a sphere's does not change its surface, a
-// plane's lies in its parameters), so only theirs is loaded.
+// Body i of a Bodies view as the narrow phase reads it: the parameter slots
+// its kind reads, and its rotation only where its surface turns with it
+// (ShapeTraits: boxes and capsules; a sphere's turn does not change its
+// surface, a plane's lies in its parameters). A compound is met part by part
+// (body_manifolds.hpp).
 template <class T, class View>
 GPUSOLVE_HD PlacedShape<T> placed_shape(const View& b, std::size_t i) {
   PlacedShape<T> s{math::Vector3<T>(b.pos(i, 0), b.pos(i, 1), b.pos(i, 2)), math::Matrix3x3<T>::identity(), {}};
-  const std::uint8_t kind = b.shape[i];
-  const std::size_t params = kind == plane ? 4 : kind == box ? 3 : kind == capsule ? 2 : 1;
-  for (std::size_t c = 0; c < params; ++c) s.p[c] = b.shape_param(i, c);
-  if (kind == box || kind == capsule)
-    for (std::size_t c = 0; c < 9; ++c) s.R[c] = b.R(i, c);
+  visit_kind<void, primitives>(
+      b.shape[i],
+      [&](auto kind) {
+        using Traits = ShapeTraits<decltype(kind)::value>;
+        for (std::size_t c = 0; c < Traits::params; ++c) s.p[c] = b.shape_param(i, c);
+        if constexpr (Traits::rotated)
+          for (std::size_t c = 0; c < 9; ++c) s.R[c] = b.R(i, c);
+      },
+      [] {});
   return s;
 }
 

@@ -14,28 +14,39 @@ namespace gpusolve::rbd::io {
 
 namespace detail {
 
-// Adds one primitive at centre p, rotation R (body -> world), shape
-// parameters s, to the frame; a moving one is drawn with the moving bodies.
+// How each kind a frame holds is drawn: one overload per kind a compound's
+// part or a body alone can be, at centre p, rotation R (body -> world), shape
+// parameters s; a moving one is drawn with the moving bodies.
+template <class T>
+void draw(Frame& f, KindConstant<sphere>, const Frame::Vec3& p, const math::Matrix3x3<T>&,
+          const std::array<T, shape_param_rows>& s, bool, const Frame::Vec3& v) {
+  f.add_sphere(p, s[0], v);
+}
+template <class T>
+void draw(Frame& f, KindConstant<box>, const Frame::Vec3& p, const math::Matrix3x3<T>& R,
+          const std::array<T, shape_param_rows>& s, bool moving, const Frame::Vec3&) {
+  Frame::Box x{p, {double(s[0]), double(s[1]), double(s[2])}, {}, moving};
+  for (int k = 0; k < 9; ++k) x.R[k] = R[k];
+  f.boxes.push_back(x);
+}
+template <class T>
+void draw(Frame& f, KindConstant<capsule>, const Frame::Vec3& p, const math::Matrix3x3<T>& R,
+          const std::array<T, shape_param_rows>& s, bool, const Frame::Vec3&) {
+  f.capsules.push_back({p, {double(R(0, 0)), double(R(1, 0)), double(R(2, 0))}, double(s[0]), double(s[1])});
+}
+template <class T>
+void draw(Frame& f, KindConstant<plane>, const Frame::Vec3&, const math::Matrix3x3<T>&,
+          const std::array<T, shape_param_rows>& s, bool, const Frame::Vec3&) {
+  f.planes.push_back({{double(s[0]), double(s[1]), double(s[2])}, double(s[3])});
+}
+
+// Adds one shape other than a compound to the frame (a kind without its draw
+// overload does not compile).
 template <class T>
 void add_primitive(Frame& f, std::uint8_t shape, const Frame::Vec3& p, const math::Matrix3x3<T>& R,
                    const std::array<T, shape_param_rows>& s, bool moving, const Frame::Vec3& v) {
-  switch (shape) {
-    case sphere:
-      f.add_sphere(p, s[0], v);
-      break;
-    case box: {
-      Frame::Box x{p, {double(s[0]), double(s[1]), double(s[2])}, {}, moving};
-      for (int k = 0; k < 9; ++k) x.R[k] = R[k];
-      f.boxes.push_back(x);
-      break;
-    }
-    case capsule:
-      f.capsules.push_back({p, {double(R(0, 0)), double(R(1, 0)), double(R(2, 0))}, double(s[0]), double(s[1])});
-      break;
-    case plane:
-      f.planes.push_back({{double(s[0]), double(s[1]), double(s[2])}, double(s[3])});
-      break;
-  }
+  visit_kind<void, primitives>(
+      shape, [&](auto kind) { draw(f, kind, p, R, s, moving, v); }, [] {});
 }
 
 }  // namespace detail

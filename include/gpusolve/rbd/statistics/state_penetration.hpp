@@ -154,8 +154,8 @@ void add_state_primitives(const BodySet<T>& set, std::size_t i, std::vector<Stat
   const bool moving = b.status == active;
   if (b.shape != compound) {
     const PlacedShape<double> s = placed(b.pos, R, b.shape_param);
-    const double bound = primitive_bound<double>(b.shape, s.p[0], s.p[1], s.p[2]);
-    out.push_back({b.shape, s, bound, primitive_feature_size<double>(b.shape, s.p[0], s.p[1], s.p[2]), i, moving});
+    const double bound = shape_bound<double>(b.shape, s.p[0], s.p[1], s.p[2]);
+    out.push_back({b.shape, s, bound, shape_feature_size<double>(b.shape, s.p[0], s.p[1], s.p[2]), i, moving});
     return;
   }
   const std::size_t first = out.size(), parts = std::size_t(b.shape_param[0]);
@@ -167,8 +167,8 @@ void add_state_primitives(const BodySet<T>& set, std::size_t i, std::vector<Stat
     const auto Rk = math::to_rotation_matrix(math::Quaternion<double>(part.q[0], part.q[1], part.q[2], part.q[3]));
     PlacedShape<double> s = placed(b.pos, math::Matrix3x3<double>(R * Rk), part.shape_param);
     s.x = V3(s.x + x);
-    feature = std::min(feature, primitive_feature_size<double>(part.shape, s.p[0], s.p[1], s.p[2]));
-    out.push_back({part.shape, s, primitive_bound<double>(part.shape, s.p[0], s.p[1], s.p[2]), 0, i, moving});
+    feature = std::min(feature, shape_feature_size<double>(part.shape, s.p[0], s.p[1], s.p[2]));
+    out.push_back({part.shape, s, shape_bound<double>(part.shape, s.p[0], s.p[1], s.p[2]), 0, i, moving});
   }
   for (std::size_t k = first; k < out.size(); ++k) out[k].feature = feature;
 }
