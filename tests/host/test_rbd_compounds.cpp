@@ -99,6 +99,33 @@ TEST_CASE("the BodyManager copies the parts of compounds added after the first s
   CHECK(d.radius(i) == Approx(set[i].shape_param[1]));
 }
 
+TEST_CASE("the BodyManager removes and compacts compounds of a type, which keep their shared parts", "[rbd][compound]") {
+  BodySet<double> set;
+  const CompoundType<double> type = set.add_compound_type(clump<double>(), 1.0);
+  set.add_plane({0, 0, 1}, 0);
+  for (int k = 0; k < 3; ++k) set.add_compound({2.0 * k, 0, 1}, type);
+  BodyManager<device::cpu, double> m(set, 1);  // every removal compacts at once
+  m.syncDevice();
+  m.bodyRemoved(2);
+  REQUIRE(m.syncDevice().rebuilt);
+  REQUIRE(set.size() == 3);
+  CHECK(set[2].pos[0] == Approx(4.0 + type.centre[0]));  // the last clump moved down to index 2
+  CHECK(set[2].first_part == type.first_part);
+  CHECK(set.parts().size() == 3);  // parts stay with their type
+  auto& d = m.device();
+  REQUIRE(d.parts.size() == 3);
+  std::uint8_t kind = 0;
+  const auto first = rbd::detail::placed_primitive<double>(d.view(), 2, 0, kind);
+  CHECK(kind == sphere);
+  CHECK(first.x[0] == Approx(set[2].pos[0] + set.parts()[0].pos[0]));
+  // A compound added after the compaction shares the type's rows too.
+  m.bodyAdded(set.add_compound({8, 0, 1}, type));
+  m.syncDevice();
+  CHECK(d.parts.size() == 3);
+  CHECK(d.first_part(3) == type.first_part);
+  CHECK(d.radius(3) == Approx(type.bound));
+}
+
 TEST_CASE("a compound is drawn as its parts", "[rbd][compound][io]") {
   BodySet<double> set;
   set.add_compound({0, 0, 2}, hammer<double>(), 1.0);
