@@ -38,7 +38,9 @@
 // its kernels run as OpenMP loops where the build has OpenMP, the thread count
 // is printed), after 2 warm-up steps; sizes above --cpu-max are skipped.
 // Also printed: contacts, iterations, the largest penetration over the timed
-// steps and the median residual: the accuracy the time bought.
+// steps and the median residual: the accuracy the time bought; and the GPU
+// memory the stepping World's buffers hold after its timed steps, in all and
+// per body (memory::memory_use; 0 on the CPU backend).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -76,6 +78,7 @@ struct Row {
   double step_ms = 0, queued_ms = 0, unattended_ms = 0, detection_ms = 0, solve_ms = 0, integration_ms = 0;
   double iterations = 0, penetration = 0, residual = 0, unattended_iterations = 0;
   std::size_t contacts = 0, steps = 0, requeued = 0;
+  std::size_t device_bytes = 0;  // GPU memory the stepping World's buffers hold (0 on the CPU backend)
 };
 
 SolverSettings<T> settings_for(const std::string& mode, const std::string& loop) {
@@ -142,6 +145,7 @@ Row time_gpu(const rbd::BodySet<T>& start, const SolverSettings<T>& s, long step
     x.ms.push_back(timer.stop_ms());
     x.accuracy(world.latest_stats());
   }
+  x.row.device_bytes = memory::memory_use<memory::device>().now;  // only this World is alive
   {
     World queued(queued_set, s);
     queued.advance(20);
@@ -236,7 +240,8 @@ int main(int argc, char** argv) {
     std::FILE* csv = open_csv(o.csv,
                               "backend,n,mode,loop,contacts,steps,ms_step_median,ms_step_queued,ms_detection,ms_solve,"
                               "ms_integration,iterations_mean,max_penetration,residual_median,cpu_threads,gpu,"
-                              "ms_step_unattended,steps_requeued,iterations_mean_unattended");
+                              "ms_step_unattended,steps_requeued,iterations_mean_unattended,device_bytes,"
+                              "device_bytes_per_body");
     for (std::size_t n : o.n) {
       rbd::BodySet<T> set = shared_pile<T>(n);
       {
@@ -262,17 +267,17 @@ int main(int argc, char** argv) {
             const Row r = time_mode(gpu, mode, g, set, steps);
             std::printf("    %s %s %s: %zu contacts: step %.3f ms (queued %.3f ms, unattended %.3f ms, %zu steps "
                         "requeued), detection %.3f, solve %.3f, integration %.3f ms; %.1f iterations (unattended "
-                        "%.1f), penetration %.4f%%, residual %.3g\n",
+                        "%.1f), penetration %.4f%%, residual %.3g; %.0f bytes of GPU memory per body\n",
                         gpu ? "gpu" : "cpu", mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.step_ms, r.queued_ms,
                         r.unattended_ms, r.requeued, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations,
-                        r.unattended_iterations, 100 * r.penetration, r.residual);
+                        r.unattended_iterations, 100 * r.penetration, r.residual, double(r.device_bytes) / double(n));
             std::fflush(stdout);
             if (csv)
-              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s,%.5f,%zu,%.2f\n",
+              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s,%.5f,%zu,%.2f,%zu,%.1f\n",
                            gpu ? "gpu" : "cpu", n, mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.steps, r.step_ms,
                            r.queued_ms, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations, r.penetration,
                            r.residual, cpu_threads, gpu_name.c_str(), r.unattended_ms, r.requeued,
-                           r.unattended_iterations);
+                           r.unattended_iterations, r.device_bytes, double(r.device_bytes) / double(n));
           }
       }
     }

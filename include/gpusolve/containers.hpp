@@ -11,6 +11,7 @@
 #include "gpusolve/container/vector_view.hpp"
 #include "gpusolve/memory/allocator.hpp"
 #include "gpusolve/memory/buffer.hpp"
+#include "gpusolve/memory/memory_use.hpp"
 #include "gpusolve/memory/constant_device_memory.hpp"
 #include "gpusolve/memory/copy.hpp"
 #include "gpusolve/memory/cuda_device_allocator.hpp"

@@ -96,3 +96,30 @@ TEST_CASE("pinned memory works with a GPU and throws NoDeviceError without one",
   }
 }
 #endif
+
+TEST_CASE("memory_use counts the bytes containers hold per memory kind, now and at most", "[memory]") {
+  using memory::host;
+  memory::reset_peak<host>();
+  const std::size_t before = memory::memory_use<host>().now;
+  {
+    VectorD1<double, device_is<device::cpu>> a(1000);
+    const std::size_t held = memory::memory_use<host>().now - before;
+    CHECK(held >= 1000 * sizeof(double));
+    CHECK(held == a.allocated() * sizeof(double));  // padding included
+    {
+      VectorD1<float, device_is<device::cpu>> b(5000);
+      CHECK(memory::memory_use<host>().now - before == held + b.allocated() * sizeof(float));
+    }
+    CHECK(memory::memory_use<host>().now - before == held);  // b's bytes returned
+    const memory::MemoryUse u = memory::memory_use<host>();
+    CHECK(u.peak - before >= held + 5000 * sizeof(float));  // b's bytes were held at once with a's
+    memory::reset_peak<host>();
+    CHECK(memory::memory_use<host>().peak == memory::memory_use<host>().now);
+  }
+  CHECK(memory::memory_use<host>().now == before);
+  // A move hands the bytes over without counting them twice.
+  VectorD1<int, device_is<device::cpu>> c(100);
+  const std::size_t with_c = memory::memory_use<host>().now;
+  VectorD1<int, device_is<device::cpu>> d(std::move(c));
+  CHECK(memory::memory_use<host>().now == with_c);
+}

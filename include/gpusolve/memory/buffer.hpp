@@ -10,12 +10,14 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/error.hpp"
 #include "gpusolve/memory/allocator.hpp"
+#include "gpusolve/memory/memory_use.hpp"
 
 namespace gpusolve::memory {
 
 // Elements are never constructed one by one: T must be trivially copyable
 // because its bytes travel between host and device with memcpy/cudaMemcpy.
 // A new buffer is zero-filled (all bytes 0), so no element is ever indeterminate.
+// Its bytes count in memory_use<memory_kind>() while it holds them.
 template <class T, class Alloc>
 class Buffer {
   static_assert(std::is_trivially_copyable_v<T>,
@@ -69,9 +71,12 @@ class Buffer {
     if (count > std::numeric_limits<std::size_t>::max() / sizeof(T))
       throw OutOfMemoryError(std::numeric_limits<std::size_t>::max(),
                              "gpusolve: element count overflows the size of an allocation");
-    return static_cast<T*>(Alloc::allocate(count * sizeof(T)));
+    T* p = static_cast<T*>(Alloc::allocate(count * sizeof(T)));
+    detail::count_allocation<memory_kind>(count * sizeof(T));
+    return p;
   }
   void release() noexcept {
+    detail::count_release<memory_kind>(bytes());
     Alloc::deallocate(ptr_, bytes());
     ptr_ = nullptr;
     count_ = 0;
