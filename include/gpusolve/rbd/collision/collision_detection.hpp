@@ -108,6 +108,19 @@ struct ContactWalk {
     manifolds(i, j, [&](const Manifold<T>& m) { count += std::uint32_t(m.count); });
     return count;
   }
+  // points(i, j), keeping the pair's manifold in `one` where its points form
+  // one (a compound resting on one face, merged), else one.count = -1.
+  GPUSOLVE_HD std::uint32_t points(std::size_t i, std::uint32_t j, Manifold<T>& one) const {
+    std::uint32_t count = 0;
+    int found = 0;
+    one.count = 0;
+    manifolds(i, j, [&](const Manifold<T>& m) {
+      count += std::uint32_t(m.count);
+      if (found++ == 0) one = m;
+    });
+    if (found > 1) one.count = -1;
+    return count;
+  }
 
   // Whether moving body i's bounding sphere comes within the margin of
   // obstacle j: of a plane's surface (or behind it), of a large body's sphere.

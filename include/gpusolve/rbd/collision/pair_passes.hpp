@@ -121,10 +121,10 @@ struct WriteCandidates {
 
 // The number of contact points of candidate pair k (0 past the candidates
 // listed: the pass runs over the list's whole capacity, its count stays on the
-// device). A pair of primitives keeps its one manifold in manifold[k] for the
+// device). A pair whose points form one manifold (two primitives; a compound
+// whose part pairs' manifolds merged into one) keeps it in manifold[k] for the
 // write pass (computed once, and the two passes cannot disagree); a pair with
-// a compound, whose part pairs give several, is marked count -1 and written
-// from its manifolds computed again.
+// several is marked count -1 and written from its manifolds computed again.
 template <class Walk, class T>
 struct CountPairPoints {
   Walk walk;
@@ -137,12 +137,10 @@ struct CountPairPoints {
     std::uint32_t p = 0;
     Manifold<T> m;
     if (k < *candidates && *candidates <= capacity && a[k] != b[k]) {
-      if (walk.primitive_manifold(a[k], b[k], m)) {
+      if (walk.primitive_manifold(a[k], b[k], m))
         p = std::uint32_t(m.count);
-      } else {
-        p = walk.points(a[k], b[k]);
-        m.count = -1;
-      }
+      else
+        p = walk.points(a[k], b[k], m);
     }
     points[k] = p;
     if (p > 0) manifold[k] = m;
