@@ -48,6 +48,9 @@ class Blocks {
                                      {sphere, {T(0.6), 0, 0, 0}, {T(-0.28), T(-0.48), 0}, {1, 0, 0, 0}}};
     const std::vector<Part> hammer = {{capsule, {T(0.3), T(1), 0, 0}, {0, 0, 0}, {1, 0, 0, 0}},
                                       {box, {T(0.4), T(0.7), T(0.4), 0}, {T(1.5), 0, 0}, {1, 0, 0, 0}}};
+    // Each compound kind stored once, shared by every body of it (a clump template).
+    const auto clump_type = set.add_compound_type(clump, solid_compound(clump, T(1)).volume);
+    const auto hammer_type = set.add_compound_type(hammer, solid_compound(hammer, T(1)).volume);
     Random rnd(o_.seed);
     const long n = *o_.scale;
     const int side = 5;
@@ -59,10 +62,7 @@ class Blocks {
       if (i % 4 == 0) set.add_box(x, brick, solid_box(brick, T(1)).volume, q);
       if (i % 4 == 1) set.add_capsule(x, T(0.5), T(1), solid_capsule(T(0.5), T(1), T(1)).volume, q);
       if (i % 4 == 2) set.add_sphere(x, T(sphere_radius), sphere_mass(T(sphere_radius)));
-      if (i % 4 == 3) {
-        const auto& parts = i % 8 == 3 ? clump : hammer;
-        set.add_compound(x, parts, solid_compound(parts, T(1)).volume, q);
-      }
+      if (i % 4 == 3) set.add_compound(x, i % 8 == 3 ? clump_type : hammer_type, q);
     }
   }
 

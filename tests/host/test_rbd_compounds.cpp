@@ -251,3 +251,72 @@ TEST_CASE("a compound type takes its mass and principal inertia outright for ove
   CHECK(set.parts().size() == 2);
   CHECK(set.size() == 1);
 }
+
+namespace {
+
+// A manifold of normal +z whose points lie at (x, y, gap) in the plane z = 0.
+Manifold<double> flat(std::initializer_list<std::array<double, 3>> pts, std::uint32_t part) {
+  Manifold<double> m;
+  m.n = math::Vector3<double>(0, 0, 1);
+  std::uint32_t f = 0;
+  for (const auto& p : pts) m.add(math::Vector3<double>(p[0], p[1], 0), p[2], part_feature(f++, part, 0));
+  return m;
+}
+
+// The points the merged sets hand out, as (x, y, gap).
+std::vector<std::array<double, 3>> merged_points(MergedManifolds<double>& mm) {
+  std::vector<std::array<double, 3>> out;
+  mm.for_each([&](const Manifold<double>& m) {
+    for (int k = 0; k < m.count; ++k) out.push_back({m.points[k].p[0], m.points[k].p[1], m.points[k].gap});
+  });
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("merged manifolds keep the corners of the region their points span, and the deepest point", "[rbd][compound][collision]") {
+  SECTION("four tiles of a face, merged in any order, keep the face's four corners") {
+    MergedManifolds<double> mm;
+    int part = 0;
+    for (double x : {-0.5, 0.5})
+      for (double y : {-0.5, 0.5})
+        CHECK(mm.merge(flat({{x - 0.5, y - 0.5, 0}, {x + 0.5, y - 0.5, 0}, {x - 0.5, y + 0.5, 0}, {x + 0.5, y + 0.5, 0}},
+                            std::uint32_t(part++))));
+    const auto pts = merged_points(mm);
+    REQUIRE(pts.size() == 4);
+    for (const auto& p : pts) CHECK((std::fabs(p[0]) == 1.0 && std::fabs(p[1]) == 1.0));
+  }
+  SECTION("a handle and a head meeting the floor keep every corner of the region they span") {
+    // The handle's two points on its axis, the head's four corners beside it:
+    // five corners (the handle's inner point lies within them), more than four.
+    MergedManifolds<double> mm;
+    mm.merge(flat({{-1.5, 0, 0.02}, {0.5, 0, 0.0}}, 0));
+    mm.merge(flat({{0.8, -0.7, -0.001}, {1.6, -0.7, 0.03}, {0.8, 0.7, 0.0}, {1.6, 0.7, 0.05}}, 1));
+    const auto pts = merged_points(mm);
+    CHECK(pts.size() == 5);
+    const auto has = [&](double x, double y) {
+      for (const auto& p : pts)
+        if (p[0] == x && p[1] == y) return true;
+      return false;
+    };
+    CHECK(has(-1.5, 0));
+    CHECK(has(0.8, -0.7));  // the deepest
+    CHECK(has(1.6, -0.7));
+    CHECK(has(0.8, 0.7));
+    CHECK(has(1.6, 0.7));
+  }
+  SECTION("an inner point deeper than every corner is kept") {
+    MergedManifolds<double> mm;
+    mm.merge(flat({{-1, -1, 0}, {1, -1, 0}, {-1, 1, 0}, {1, 1, 0}}, 0));
+    mm.merge(flat({{0, 0, -0.05}}, 1));
+    CHECK(merged_points(mm).size() == 5);
+  }
+  SECTION("normals apart by more than 3 degrees stay apart") {
+    MergedManifolds<double> mm;
+    mm.merge(flat({{0, 0, 0}}, 0));
+    Manifold<double> side = flat({{1, 0, 0}}, 1);
+    side.n = math::Vector3<double>(std::sin(0.1), 0, std::cos(0.1));  // 5.7 degrees
+    mm.merge(side);
+    CHECK(mm.sets == 2);
+  }
+}
