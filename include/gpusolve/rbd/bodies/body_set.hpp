@@ -97,10 +97,7 @@ class BodySet {
     b.status = active;
     b.inv_mass = T(1) / type.mass;
     b.inertia = type.inertia;
-    const auto& I = type.inertia;
-    const math::Matrix3x3<double> inv = math::inverse_spd(
-        math::Matrix3x3<double>(I[0], I[1], I[2], I[3], I[4], I[5], I[6], I[7], I[8]));
-    for (int k = 0; k < 9; ++k) b.inv_inertia_body[k] = T(inv[k]);
+    b.inv_inertia_body = type.inv_inertia;
     return add(b);
   }
   // A compound of the type that never moves.
@@ -238,6 +235,9 @@ class BodySet {
     t.count = std::uint32_t(parts.size());
     t.mass = mass;
     t.inertia = inertia;
+    const math::Matrix3x3<double> inv = math::inverse_spd(math::Matrix3x3<double>(
+        inertia[0], inertia[1], inertia[2], inertia[3], inertia[4], inertia[5], inertia[6], inertia[7], inertia[8]));
+    for (int k = 0; k < 9; ++k) t.inv_inertia[k] = T(inv[k]);
     t.centre = centre;
     t.feature = std::numeric_limits<T>::infinity();
     for (Part<T> part : parts) {

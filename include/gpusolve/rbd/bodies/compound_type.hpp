@@ -17,7 +17,8 @@ struct CompoundType {
   T bound = 0;    // bounding radius about the centre of mass
   T feature = 0;  // the smallest feature size of the parts
   T mass = 0;
-  std::array<T, 9> inertia{};  // about the centre of mass, in the type's frame
+  std::array<T, 9> inertia{};      // about the centre of mass, in the type's frame
+  std::array<T, 9> inv_inertia{};  // its inverse, computed once for every body of the type
   std::array<T, 3> centre{};   // the centre of mass in the frame the parts were given in
 };
 
