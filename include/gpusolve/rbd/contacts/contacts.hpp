@@ -48,7 +48,7 @@ struct Contacts {
   VecD1 phi0;              // gap at the start of the step
   VecD1 mu;                // friction coefficient
   VecD1 bounce;            // separation speed restitution asks for (0: none), materials.hpp
-  VecD2 dinv;              // n x rows^2: inverse diagonal block, row-major (i, r*rows + c)
+  VecD2 dinv;              // n x rows: the step of each row (the diagonal of D, InverseBlocks)
   VecD2 x;                 // n x rows: impulse (normal, t, o)
 
   Contacts() = default;
@@ -67,7 +67,7 @@ struct Contacts {
       phi0.resize(cap);
       bounce.resize(cap);
       for (VecD2* f : {&n, &ra, &rb}) f->resize(cap, 3);
-      dinv.resize(cap, rows * rows);
+      dinv.resize(cap, rows);
       x.resize(cap, rows);
       if constexpr (Model::friction) {
         t.resize(cap, 3);

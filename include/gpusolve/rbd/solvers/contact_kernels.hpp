@@ -128,8 +128,8 @@ struct DirectSink {
 // with, per body, K p = m^-1 p + (I^-1 (r x p)) x r (= (m^-1 E - r× I^-1 r×) p),
 // projected to the model's rows. Fixed bodies contribute nothing (zero inverse
 // mass and inertia). Run once per step, after collision detection.
-// dinv is diagonal: the normal row steps by 1 / W_nn, both friction rows by one
-// scalar, 1 / max(W_tt, W_oo). A fixed point of x = proj(x - D r) solves the
+// dinv is diagonal, and stored as its diagonal (one value per row): the normal
+// row steps by 1 / W_nn, both friction rows by one scalar, 1 / max(W_tt, W_oo). A fixed point of x = proj(x - D r) solves the
 // contact problem only where D keeps the cone's geometry: with the full W^-1,
 // the normal and friction rows of a point off a body's centre line (a box's
 // corner) are coupled, and the fixed point let a sliding box's four points
@@ -170,10 +170,7 @@ struct InverseBlocks {
     }
     const T s = (scale ? *scale : T(1)) / (shared ? T(pair_points(i)) : T(1));
     c.dinv(i, 0) = s / W[0][0];
-    if constexpr (R == 3) {
-      const T friction = s / (W[1][1] > W[2][2] ? W[1][1] : W[2][2]);
-      for (std::size_t k = 1; k < 9; ++k) c.dinv(i, k) = k % 4 == 0 ? friction : T(0);
-    }
+    if constexpr (R == 3) c.dinv(i, 1) = c.dinv(i, 2) = s / (W[1][1] > W[2][2] ? W[1][1] : W[2][2]);
   }
   // The contacts of contact i's body pair: its neighbours in the (a, b) order
   // with the same bodies (a manifold's up to max_manifold_points; a compound's
@@ -266,11 +263,7 @@ struct ResolveCollisions {
     const detail::Frame<T, Model, CV> f(c, i);
     T x0[R], y[R], x[R], dx[R];
     it.start(c, i, x0, y);
-    for (std::size_t r = 0; r < R; ++r) {
-      T s = 0;
-      for (std::size_t k = 0; k < R; ++k) s += c.dinv(i, r * R + k) * e[k];
-      x[r] = y[r] - omega * s;
-    }
+    for (std::size_t r = 0; r < R; ++r) x[r] = y[r] - omega * (c.dinv(i, r) * e[r]);
     T mu = T(0);
     if constexpr (Model::friction) mu = c.mu[i];
     Model::project(x, mu);
