@@ -228,7 +228,7 @@ class World {
     const auto bv = manager_.device().view();
     const auto cv = contacts_.view();
     if constexpr (!integrates<solver_type>::value) {
-      auto keep = warm_.rememberer(cv, warm);
+      auto keep = warm_.rememberer(cv, warm, stream_);
       using End = detail::StepEnd<decltype(body_move(bv, settings_.dt)), decltype(keep)>;
       const detail::CountedUnlessHeld<End> end{{body_move(bv, settings_.dt), keep, bv.size(), warm_.remembered()}, hold};
       step_figures_after(algorithms_, end, bv, cv, gravity(), figures_.data() + k, stream_);

@@ -133,18 +133,21 @@ class WarmStart {
   }
   template <class CV>
   void remember(const CV& c, stream_t stream = stream_t{}) {
-    const auto f = rememberer(c);
+    const auto f = rememberer(c, true, stream);
     if (count_ != 0) launch(Device{}, count_, f, stream);
   }
   // remember() as a functor over the remembered() contacts, for a caller that
   // runs it in a pass of its own; storage is sized here. Without `on`, forget().
+  // Growing keeps what was remembered: a step queued unattended and held
+  // (World::advance_unattended) changes nothing, and when it is queued again
+  // it carries the impulses of the step before it.
   template <class CV>
-  detail::RememberImpulse<Model, CV, T> rememberer(const CV& c, bool on = true) {
+  detail::RememberImpulse<Model, CV, T> rememberer(const CV& c, bool on = true, stream_t stream = stream_t{}) {
     count_ = on ? c.bound() : 0;
     if (count_ != 0) {
-      gpusolve::detail::ensure_size(keys_, count_);
-      gpusolve::detail::ensure_size(features_, count_);
-      gpusolve::detail::ensure_size(p_, count_, Model::rows);
+      gpusolve::detail::ensure_size_keeping(keys_, count_, 1, stream);
+      gpusolve::detail::ensure_size_keeping(features_, count_, 1, stream);
+      gpusolve::detail::ensure_size_keeping(p_, count_, Model::rows, stream);
       gpusolve::detail::ensure_size(live_, 1);
     }
     return {c, keys_.data(), features_.data(), p_.view(), live_.data()};
