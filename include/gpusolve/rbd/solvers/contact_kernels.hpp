@@ -129,13 +129,13 @@ struct DirectSink {
 // projected to the model's rows. Fixed bodies contribute nothing (zero inverse
 // mass and inertia). Run once per step, after collision detection.
 // dinv is diagonal, and stored as its diagonal (one value per row): the normal
-// row steps by 1 / W_nn, both friction rows by one scalar, 1 / max(W_tt, W_oo). A fixed point of x = proj(x - D r) solves the
-// contact problem only where D keeps the cone's geometry: with the full W^-1,
-// the normal and friction rows of a point off a body's centre line (a box's
-// corner) are coupled, and the fixed point let a sliding box's four points
-// each push sideways and lift it (issue 35: 13% too little friction on a
-// slope, a hop on a floor). For a sphere W is already diagonal with equal
-// friction rows, and the step is the same.
+// row steps by 1 / W_nn, both friction rows by one scalar, 1 / max(W_tt, W_oo).
+// A fixed point of x = proj(x - D r) solves the contact problem only where D
+// keeps the cone's geometry: with the full W^-1, the normal and friction rows
+// of a point off a body's centre line (a box's corner) are coupled, and the
+// fixed point let a sliding box's four points each push sideways and lift it
+// (issue 35: 13% too little friction on a slope, a hop on a floor). For a
+// sphere W is already diagonal with equal friction rows, and the step is the same.
 // With `scale`, dinv is multiplied by *scale: the projected update's step is
 // omega dinv, so a retry at a smaller omega can scale the blocks instead of
 // rebuilding an iteration (JacobiSolver; by a power of two the same bits).
