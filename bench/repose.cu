@@ -1,14 +1,16 @@
-// The angle of repose of a poured pile (issue 36): N spheres (radius 1, mass
-// 1) or N three-sphere clumps (bench/shared_pile.hpp's clump type: spheres of
-// radius 1 on a line 1.2 apart, mass 3) released at rest from a column above
-// the floor, so that each layer lands after the one below; friction 0.5 on
-// every contact, no rolling resistance, the library's defaults otherwise.
+// The angle of repose of a poured pile (issues 36, 37): N spheres (radius 1,
+// mass 1) or N three-sphere clumps (bench/shared_pile.hpp's clump type:
+// spheres of radius 1 on a line 1.2 apart, mass 3) released at rest from a
+// column above the floor, so that each layer lands after the one below; each
+// friction coefficient of --friction on every contact, and each rolling
+// resistance of --rolling (a length: a fraction of the radius; 0: the cone
+// model, else ConeRollingFriction), the library's defaults otherwise.
 // When the pour has settled, the angle of the pile's flank from its surface.
 //
 // Run: gpusolve_bench_repose [--kinds spheres,clumps] [--n 2000] [--steps 4000]
-//        [--backend gpu|cpu] [--csv FILE] [--profile FILE]
-// --csv: one row per kind (the angle and how it was found); --profile: each
-// ring's height per kind (tools/plot_repose.py draws them).
+//        [--friction 0.5] [--rolling 0] [--backend gpu|cpu] [--csv FILE] [--profile FILE]
+// --csv: one row per kind, friction and rolling (the angle and how it was
+// found); --profile: each ring's height per row (tools/plot_repose.py draws them).
 //
 // The column: sites of a square lattice (spacing 2.1 for spheres, 4.5 for
 // clumps: each reaches 2.2 from its centre) within a disc of radius 5
@@ -110,16 +112,23 @@ struct Row {
   double kinetic, penetration;  // at the last step
 };
 
-template <class Dev>
-Row pour(const std::string& kind, std::size_t n, std::size_t steps) {
+template <class Dev, class Model>
+Row pour(const std::string& kind, std::size_t n, std::size_t steps, double friction, double rolling) {
   rbd::BodySet<T> set = poured_column(kind, n);
   rbd::SolverSettings<T> s;
-  s.friction = T(0.5);
-  rbd::World<Dev, T> world(set, s);
+  s.friction = T(friction);
+  s.rolling = T(rolling);
+  rbd::World<Dev, T, Model> world(set, s);
   rbd::StepStats<T> st;
   for (std::size_t k = 0; k < steps; ++k) st = world.step();
   world.syncHost();
   return {surface_of(set), double(st.kinetic_energy), double(st.max_penetration)};
+}
+
+template <class Dev>
+Row pour(const std::string& kind, std::size_t n, std::size_t steps, double friction, double rolling) {
+  if (rolling > 0) return pour<Dev, rbd::ConeRollingFriction>(kind, n, steps, friction, rolling);
+  return pour<Dev, rbd::ConeFriction>(kind, n, steps, friction, rolling);
 }
 
 }  // namespace
@@ -127,13 +136,18 @@ Row pour(const std::string& kind, std::size_t n, std::size_t steps) {
 int main(int argc, char** argv) {
   std::vector<std::string> kinds{"spheres", "clumps"};
   std::size_t n = 2000, steps = 4000;
+  std::vector<double> frictions{0.5}, rollings{0};
   std::string backend = "gpu", csv, profile;
-  const char* usage = "[--kinds spheres,clumps] [--n N] [--steps N] [--backend gpu|cpu] [--csv FILE] [--profile FILE]";
+  const char* usage =
+      "[--kinds spheres,clumps] [--n N] [--steps N] [--friction LIST] [--rolling LIST] [--backend gpu|cpu] "
+      "[--csv FILE] [--profile FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--kinds") kinds = bench::parse_words(bench::option_value(argc, argv, i));
     else if (a == "--n") n = std::stoul(bench::option_value(argc, argv, i));
     else if (a == "--steps") steps = std::stoul(bench::option_value(argc, argv, i));
+    else if (a == "--friction") frictions = bench::parse_list<double>(bench::option_value(argc, argv, i));
+    else if (a == "--rolling") rollings = bench::parse_list<double>(bench::option_value(argc, argv, i));
     else if (a == "--backend") backend = bench::option_value(argc, argv, i);
     else if (a == "--csv") csv = bench::option_value(argc, argv, i);
     else if (a == "--profile") profile = bench::option_value(argc, argv, i);
@@ -142,28 +156,35 @@ int main(int argc, char** argv) {
   for (const auto& k : kinds)
     if (k != "spheres" && k != "clumps") bench::usage_exit(argv[0], usage, "--kinds " + k);
   if (backend != "gpu" && backend != "cpu") bench::usage_exit(argv[0], usage, "--backend " + backend);
-  const std::string what = "gpusolve repose: " + std::to_string(n) + " bodies poured, " + std::to_string(steps) +
-                           " steps at dt 0.0025, friction 0.5";
+  const std::string what =
+      "gpusolve repose: " + std::to_string(n) + " bodies poured, " + std::to_string(steps) + " steps at dt 0.0025";
   const std::string dev = backend == "gpu" ? bench::print_banner(what.c_str()) : "cpu backend";
   if (backend == "cpu") std::printf("%s (cpu backend)\n", what.c_str());
-  std::FILE* out = bench::open_csv(csv, "kind,n,steps,angle_deg,peak,pile_radius,flank_rings,kinetic_energy,max_penetration,device");
-  std::FILE* rings = bench::open_csv(profile, "kind,ring_centre,height");
-  for (const auto& kind : kinds) {
-    const Row r = backend == "gpu" ? pour<device::gpu>(kind, n, steps) : pour<device::cpu>(kind, n, steps);
-    std::printf("  %-8s angle %.1f deg (peak %.2f, pile radius %.1f, %zu flank rings), kinetic energy %.3g, "
-                "penetration %.4f%%\n    ring heights:",
-                kind.c_str(), r.surface.angle_deg, r.surface.peak, r.surface.radius, r.surface.flank_rings, r.kinetic,
-                100 * r.penetration);
-    for (std::size_t k = 0; k < r.surface.top.size(); ++k) {
-      std::printf(" %.1f", r.surface.top[k]);
-      if (rings) std::fprintf(rings, "%s,%.1f,%.4f\n", kind.c_str(), (double(k) + 0.5) * ring_width, r.surface.top[k]);
-    }
-    std::printf("\n");
-    std::fflush(stdout);
-    if (out)
-      std::fprintf(out, "%s,%zu,%zu,%.3f,%.4f,%.3f,%zu,%.6g,%.6g,%s\n", kind.c_str(), n, steps, r.surface.angle_deg,
-                   r.surface.peak, r.surface.radius, r.surface.flank_rings, r.kinetic, r.penetration, dev.c_str());
-  }
+  std::FILE* out = bench::open_csv(
+      csv, "kind,friction,rolling,n,steps,angle_deg,peak,pile_radius,flank_rings,kinetic_energy,max_penetration,device");
+  std::FILE* rings = bench::open_csv(profile, "kind,friction,rolling,ring_centre,height");
+  for (const auto& kind : kinds)
+    for (double friction : frictions)
+      for (double rolling : rollings) {
+        const Row r = backend == "gpu" ? pour<device::gpu>(kind, n, steps, friction, rolling)
+                                       : pour<device::cpu>(kind, n, steps, friction, rolling);
+        std::printf("  %-8s friction %g rolling %g: angle %.1f deg (peak %.2f, pile radius %.1f, %zu flank rings), "
+                    "kinetic energy %.3g, penetration %.4f%%\n    ring heights:",
+                    kind.c_str(), friction, rolling, r.surface.angle_deg, r.surface.peak, r.surface.radius,
+                    r.surface.flank_rings, r.kinetic, 100 * r.penetration);
+        for (std::size_t k = 0; k < r.surface.top.size(); ++k) {
+          std::printf(" %.1f", r.surface.top[k]);
+          if (rings)
+            std::fprintf(rings, "%s,%g,%g,%.1f,%.4f\n", kind.c_str(), friction, rolling,
+                         (double(k) + 0.5) * ring_width, r.surface.top[k]);
+        }
+        std::printf("\n");
+        std::fflush(stdout);
+        if (out)
+          std::fprintf(out, "%s,%g,%g,%zu,%zu,%.3f,%.4f,%.3f,%zu,%.6g,%.6g,%s\n", kind.c_str(), friction, rolling, n,
+                       steps, r.surface.angle_deg, r.surface.peak, r.surface.radius, r.surface.flank_rings, r.kinetic,
+                       r.penetration, dev.c_str());
+      }
   if (out) std::fclose(out);
   if (rings) std::fclose(rings);
   return 0;

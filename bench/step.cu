@@ -1,6 +1,6 @@
 // The whole time step, per phase and in total, on the GPU and the CPU backend.
 //
-// Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance]
+// Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance,rolling]
 //                          [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
 //                          [--cpu-max 1000000] [--csv FILE]
 //
@@ -10,7 +10,10 @@
 //   jacobi10:  projected Jacobi (gather), exactly 10 iterations per step, one check;
 //   atomic10:  the same with atomic accumulation (one phase per iteration);
 //   defaults:  World<device::gpu> with SolverSettings{} (APGD, 50 iterations);
-//   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500.
+//   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500;
+//   rolling:   the defaults with the six-row contact model (ConeRollingFriction), rolling
+//              and spinning resistance 0.01 (a hundredth of the radius): the cost of
+//              the angular rows against `defaults` (issue 37).
 // --loop: how the GPU runs the solver's iterations between two residual checks:
 //   auto         the library's choice (SolverSettings::persistent_max_contacts,
 //                detection as a kept CUDA graph: detection_graph, and a persistent
@@ -99,8 +102,10 @@ SolverSettings<T> settings_for(const std::string& mode, const std::string& loop)
     s.tolerance = T(1e-30);  // runs all 10
   } else if (mode == "tolerance") {
     s.max_iterations = 500, s.check_every = 10;
+  } else if (mode == "rolling") {
+    s.rolling = T(0.01), s.spinning = T(0.01);
   } else if (mode != "defaults") {
-    throw InvalidArgumentError("bench: unknown mode '" + mode + "' (jacobi10, atomic10, defaults, tolerance)");
+    throw InvalidArgumentError("bench: unknown mode '" + mode + "' (jacobi10, atomic10, defaults, tolerance, rolling)");
   }
   return s;
 }
@@ -131,9 +136,9 @@ struct Samples {
   }
 };
 
-template <class Method>
+template <class Method, class Model>
 Row time_gpu(const rbd::BodySet<T>& start, const SolverSettings<T>& s, long steps) {
-  using World = rbd::World<device::gpu, T, rbd::ConeFriction, Method>;
+  using World = rbd::World<device::gpu, T, Model, Method>;
   rbd::BodySet<T> set = start, queued_set = start, unattended_set = start, counted_set = start;
   World world(set, s);
   world.advance(20);
@@ -178,9 +183,9 @@ Row time_gpu(const rbd::BodySet<T>& start, const SolverSettings<T>& s, long step
   return x.medians(steps);
 }
 
-template <class Method>
+template <class Method, class Model>
 Row time_cpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
-  rbd::World<device::cpu, T, rbd::ConeFriction, Method> world(set, s);
+  rbd::World<device::cpu, T, Model, Method> world(set, s);
   world.advance(2);
   world.set_phase_timing(true);
   Samples x;
@@ -198,15 +203,17 @@ Row time_cpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
   return r;
 }
 
-template <class Method>
+template <class Method, class Model = rbd::ConeFriction>
 Row time_backend(bool gpu, const rbd::BodySet<T>& set, const SolverSettings<T>& s, long steps) {
-  return gpu ? time_gpu<Method>(set, s, steps) : time_cpu<Method>(set, s, steps);
+  return gpu ? time_gpu<Method, Model>(set, s, steps) : time_cpu<Method, Model>(set, s, steps);
 }
 
 Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const rbd::BodySet<T>& set, long steps) {
   const SolverSettings<T> s = settings_for(mode, loop);
   if (mode == "jacobi10") return time_backend<rbd::Jacobi<rbd::Gather>>(gpu, set, s, steps);
   if (mode == "atomic10") return time_backend<rbd::Jacobi<rbd::Atomic>>(gpu, set, s, steps);
+  if (mode == "rolling")
+    return time_backend<rbd::AcceleratedJacobi<rbd::Gather>, rbd::ConeRollingFriction>(gpu, set, s, steps);
   return time_backend<rbd::AcceleratedJacobi<rbd::Gather>>(gpu, set, s, steps);
 }
 
@@ -215,7 +222,7 @@ Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const 
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "[--n LIST] [--modes jacobi10,defaults,tolerance] [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
+      "[--n LIST] [--modes jacobi10,defaults,tolerance,rolling] [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
       "[--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "gpusolve/rbd/bodies/body_set.hpp"
@@ -25,6 +26,17 @@ void for_every_method(F&& f) {
   f(ColouredGaussSeidel{});
   f(Substepping<>{});
   f(AcceleratedCG{});
+}
+
+// Whether f() throws InvalidArgumentError with `what` in its message.
+template <class F>
+bool refused_naming(F&& f, const std::string& what) {
+  try {
+    f();
+  } catch (const InvalidArgumentError& e) {
+    return std::string(e.what()).find(what) != std::string::npos;
+  }
+  return false;
 }
 
 // The unit quaternion (w, x, y, z) of a turn by angle about the unit axis (x, y, z).

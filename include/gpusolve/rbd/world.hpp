@@ -157,6 +157,7 @@ class World {
     StepStats<T> stats;
     bool pending = false;
     try {
+      require_model_materials();
       mark(slot, begun);
       detect(hold);
       mark(slot, detected);
@@ -180,10 +181,22 @@ class World {
     ++steps_;
   }
 
+  // A rolling or spinning resistance that the contact model has no rows for
+  // is refused by name, not ignored: the materials once per change of the
+  // list, the settings in set_settings.
+  void require_model_materials() {
+    if constexpr (!Contacts<Device, T, Model>::angular) {
+      const MaterialList<T>& list = manager_.host().materials();
+      if (list.version() == materials_checked_) return;
+      refuse_angular_resistance(list, "the World's contact model has no angular rows (use ConeRollingFriction)");
+      materials_checked_ = list.version();
+    }
+  }
+
   void detect(std::uint32_t* hold) {
     const SolverSettings<T>& s = settings_;
     detection_.set_graphs(s.detection_graph);
-    const ContactDefaults<T> defaults({s.friction, s.restitution}, s.bounce_threshold, s.dt);
+    const ContactDefaults<T> defaults({s.friction, s.restitution, s.rolling, s.spinning}, s.bounce_threshold, s.dt);
     if (hold != nullptr)
       detection_.detect_queued(manager_.device(), contacts_, s.margin, defaults, hold, stream_);
     else
@@ -306,6 +319,7 @@ class World {
   Slot slots_[2];  // the last two steps queued
   std::size_t steps_ = 0, current_ = 0;
   bool timing_ = false;
+  std::size_t materials_checked_ = ~std::size_t(0);  // the MaterialList version require_model_materials passed
   UnattendedSteps<Device> unattended_;
 };
 
@@ -322,6 +336,10 @@ World<Device, T, Model, Method, Shapes>::World(BodySet<T>& set, const SolverSett
 template <class Device, class T, class Model, class Method, ShapeMask Shapes>
 void World<Device, T, Model, Method, Shapes>::set_settings(const SolverSettings<T>& s) {
   s.validate();
+  if constexpr (!Contacts<Device, T, Model>::angular)
+    if (s.rolling != T(0) || s.spinning != T(0))
+      detail::bad_setting(s.rolling != T(0) ? "rolling" : "spinning",
+                          "needs a contact model with angular rows (ConeRollingFriction); this World's has none");
   finish();
   settings_ = s;
 }

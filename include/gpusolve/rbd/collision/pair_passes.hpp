@@ -17,8 +17,8 @@
 
 namespace gpusolve::rbd::detail {
 
-// Writes manifold points as contacts of the pair (i, j), with the friction
-// and restitution of the bodies' materials, and inert contacts where a pass
+// Writes manifold points as contacts of the pair (i, j), with the friction,
+// restitution and rolling and spinning resistance of the bodies' materials, and inert contacts where a pass
 // finds fewer points than its count said.
 template <class Walk, class ContactView, class T>
 struct PointWriter {
@@ -33,7 +33,7 @@ struct PointWriter {
     const Material<T> pair =
         b.materials.pair(material_of(i, q.feature >> 24), material_of(j, (q.feature >> 16) & 0xffu), defaults.world);
     contacts.set(o, std::uint32_t(i), j, m.n, ra, rb, q.gap, pair.friction, q.feature,
-                 bounce(pair.restitution, i, j, m.n, ra, rb, q.gap));
+                 bounce(pair.restitution, i, j, m.n, ra, rb, q.gap), pair.spinning, pair.rolling);
   }
   // The material of body i at its part `part` (body_manifolds.hpp's feature
   // bits): a compound's part's own where it names one, else the body's.

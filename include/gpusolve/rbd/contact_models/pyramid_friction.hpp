@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "gpusolve/core/config.hpp"
+#include "gpusolve/rbd/contact_models/contact_limits.hpp"
 
 namespace gpusolve::rbd {
 
@@ -11,12 +12,12 @@ namespace gpusolve::rbd {
 // friction depends on the direction of sliding: along a diagonal of the pyramid
 // the force reaches sqrt(2) mu N (ConeFriction does not).
 struct PyramidFriction {
-  static constexpr std::size_t rows = 3;
+  static constexpr std::size_t rows = 3, linear_rows = 3;
   static constexpr bool friction = true;
   template <class T>
-  GPUSOLVE_HD static void project(T* x, T mu) {
+  GPUSOLVE_HD static void project(T* x, const ContactLimits<T>& k) {
     if (x[0] < T(0)) x[0] = T(0);
-    const T lim = mu * x[0];
+    const T lim = k.mu * x[0];
     for (std::size_t r = 1; r < 3; ++r) x[r] = x[r] > lim ? lim : (x[r] < -lim ? -lim : x[r]);
   }
 };

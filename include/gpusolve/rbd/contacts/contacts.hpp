@@ -27,8 +27,8 @@ namespace gpusolve::rbd {
 // fills a, b, n, ra, rb, phi0, bounce and, for models with friction, mu
 // (View::set also builds the tangents). The solver fills dinv and x.
 //
-// Fields a model does not need (t, o, mu for Frictionless) are never allocated:
-// their views are empty.
+// Fields a model does not need (t, o, mu for Frictionless; spin and roll for
+// a model without angular rows) are never allocated: their views are empty.
 template <class Device, class T, class Model>
 struct Contacts {
   static_assert(std::is_floating_point_v<T>, "Contacts: T must be float or double");
@@ -36,6 +36,7 @@ struct Contacts {
   using value_type = T;
   using model_type = Model;
   static constexpr std::size_t rows = Model::rows;
+  static constexpr bool angular = Model::rows > Model::linear_rows;
   template <class E>
   using D1 = VectorD1<E, device_is<Device>>;
   using VecD1 = D1<T>;
@@ -47,6 +48,7 @@ struct Contacts {
   VecD2 ra, rb;            // n x 3: centre of mass -> contact point
   VecD1 phi0;              // gap at the start of the step
   VecD1 mu;                // friction coefficient
+  VecD1 spin, roll;        // torsional and rolling resistance, lengths (models with angular rows)
   VecD1 bounce;            // separation speed restitution asks for (0: none), materials.hpp
   VecD2 dinv;              // n x rows: the step of each row (the diagonal of D, InverseBlocks)
   VecD2 x;                 // n x rows: impulse (normal, t, o)
@@ -73,6 +75,10 @@ struct Contacts {
         t.resize(cap, 3);
         o.resize(cap, 3);
         mu.resize(cap);
+      }
+      if constexpr (angular) {
+        spin.resize(cap);
+        roll.resize(cap);
       }
       capacity_ = cap;
     }
@@ -106,7 +112,7 @@ struct Contacts {
     detail::Extent count;
     D1View<std::uint32_t> a, b, feature;
     VecD2View n, t, o, ra, rb;
-    VecD1View phi0, mu, bounce;
+    VecD1View phi0, mu, spin, roll, bounce;
     VecD2View dinv, x;
 
     GPUSOLVE_HD std::size_t size() const {
@@ -123,11 +129,12 @@ struct Contacts {
     // tangents are built from n, so friction rows are well defined for any
     // normal; mu is ignored by models without friction. point_feature tells
     // the points of one body pair apart (warm starting matches it);
-    // bounce_speed is the normal separation speed restitution asks for.
+    // bounce_speed is the normal separation speed restitution asks for;
+    // spinning and rolling (lengths) bound the angular rows of a model that has them.
     template <class V>
     GPUSOLVE_HD void set(std::size_t i, std::uint32_t body_a, std::uint32_t body_b, const V& normal,
                          const V& r_a, const V& r_b, T gap, T friction, std::uint32_t point_feature = 0,
-                         T bounce_speed = T(0)) const {
+                         T bounce_speed = T(0), T spinning = T(0), T rolling = T(0)) const {
       a[i] = body_a;
       b[i] = body_b;
       feature[i] = point_feature;
@@ -143,6 +150,12 @@ struct Contacts {
         set_tangents(i);
       } else {
         (void)friction;
+      }
+      if constexpr (angular) {
+        spin[i] = spinning;
+        roll[i] = rolling;
+      } else {
+        (void)spinning, (void)rolling;
       }
     }
 
@@ -181,6 +194,8 @@ struct Contacts {
                 logical(rb.view(), n_),
                 logical(phi0.view(), n_),
                 logical(mu.view(), n_),
+                logical(spin.view(), n_),
+                logical(roll.view(), n_),
                 logical(bounce.view(), n_),
                 logical(dinv.view(), n_),
                 logical(x.view(), n_)};

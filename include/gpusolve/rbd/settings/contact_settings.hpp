@@ -1,6 +1,7 @@
 // ContactSettings: how contacts are generated and what they carry: the margin
 // within which a gap becomes a contact, the share of a penetration corrected
-// per step, the default material's friction and restitution.
+// per step, the default material's friction, restitution and rolling and
+// spinning resistance.
 #pragma once
 
 #include <cmath>
@@ -20,6 +21,10 @@ struct ContactSettings {
   // (models with friction) and coefficient of restitution of its contacts.
   T friction = T(0.5);
   T restitution = T(0);
+  // Its rolling and spinning resistance (m, bodies/materials.hpp): nonzero only
+  // in a World whose contact model has angular rows (ConeRollingFriction).
+  T rolling = T(0);
+  T spinning = T(0);
   // A contact bounces (restitution) only where its bodies approach faster than
   // this (m/s): slower impacts, as of a body coming to rest, do not (Box2D v3's
   // restitution threshold, 1 m/s).
@@ -31,6 +36,8 @@ struct ContactSettings {
     if (!(correction > 0 && correction <= 1)) detail::bad_setting("correction", "must lie in (0, 1]");
     if (!(friction >= 0) || !std::isfinite(friction)) detail::bad_setting("friction", "must be non-negative and finite");
     if (!(restitution >= 0 && restitution <= 1)) detail::bad_setting("restitution", "must lie in [0, 1]");
+    if (!(rolling >= 0) || !std::isfinite(rolling)) detail::bad_setting("rolling", "must be non-negative and finite");
+    if (!(spinning >= 0) || !std::isfinite(spinning)) detail::bad_setting("spinning", "must be non-negative and finite");
     if (!(bounce_threshold >= 0) || !std::isfinite(bounce_threshold))
       detail::bad_setting("bounce_threshold", "must be non-negative and finite");
   }

@@ -196,15 +196,15 @@ struct Classify {
     } else {
       T xp[R], dx[R];
       for (std::size_t r = 0; r < R; ++r) xp[r] = x[r];
-      Model::project(xp, mu);
+      Model::project(xp, ContactLimits<T>{mu});
       bool outside = false;
       for (std::size_t r = 0; r < R; ++r)
         outside = outside || std::fabs(xp[r] - x[r]) > T(1e-6) * (std::fabs(x[0]) + T(1e-30));
       for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - omega * (c.dinv(i, r) * e[r]);
-      Model::project(dx, mu);
+      Model::project(dx, ContactLimits<T>{mu});
       for (std::size_t r = 0; r < R; ++r) dx[r] -= x[r];
       const detail::Frame<T, Model, CV> f(c, i);
-      const detail::BodyResponse<T> d(phi.b, c, i, f.world(dx));
+      const detail::BodyResponse<T> d(phi.b, c, i, f.linear(dx));
       const math::Vector3<T> du =
           detail::point_velocity(d.dva, d.dwa, d.ra) - detail::point_velocity(d.dvb, d.dwb, d.rb);
       T s = 0;
@@ -260,7 +260,7 @@ struct Direction {
     step[i] = free ? feasible_step(x, d, mu) : std::numeric_limits<T>::infinity();
     uphill[i] = T(0), descent[i] = s;
     const detail::Frame<T, Model, CV> f(c, i);
-    detail::BodyResponse<T>(phi.b, c, i, f.world(d)).send(jacobi.sink, i);
+    detail::BodyResponse<T>(phi.b, c, i, f.linear(d)).send(jacobi.sink, i);
   }
 };
 
@@ -354,7 +354,7 @@ struct Advance {
       T x[R];
       bool moved = false;
       for (std::size_t r = 0; r < R; ++r) x[r] = c.x(i, r) + alpha * p(i, r), moved = moved || p(i, r) != T(0);
-      if (moved) Model::project(x, T(c.mu[i]));
+      if (moved) Model::project(x, limits_of<Model, T>(c, i));
       for (std::size_t r = 0; r < R; ++r) c.x(i, r) = x[r], cl.phi.rhs(i, r) += alpha * math::dot(f.q[r], du);
     } else {
       for (std::size_t r = 0; r < R; ++r) {

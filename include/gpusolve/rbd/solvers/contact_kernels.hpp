@@ -7,31 +7,50 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
+#include "gpusolve/rbd/contact_models/contact_limits.hpp"
 #include "gpusolve/rbd/solvers/iterate.hpp"
 
 namespace gpusolve::rbd {
 
 namespace detail {
 
-// The contact frame: row 0 is n, rows 1 and 2 (models with friction) t and o.
+// The contact frame: row 0 is n, rows 1 and 2 (models with friction) t and o;
+// a model's angular rows (from Model::linear_rows on) turn about n, t, o in turn.
 template <class T, class Model, class CV>
 struct Frame {
-  math::Vector3<T> q[Model::rows];
+  static constexpr std::size_t R = Model::rows, L = Model::linear_rows;
+  static_assert((L == 1 || L == 3) && (R == L || R == L + 3), "Frame: rows n[, t, o][, about n, t, o]");
+  math::Vector3<T> q[L];
   GPUSOLVE_HD Frame(const CV& c, std::size_t i) {
     q[0] = math::load3<T>(c.n, i);
-    if constexpr (Model::rows == 3) {
+    if constexpr (L == 3) {
       q[1] = math::load3<T>(c.t, i);
       q[2] = math::load3<T>(c.o, i);
     }
   }
-  // Q x: the impulse in world coordinates.
-  GPUSOLVE_HD math::Vector3<T> world(const T* x) const {
+  // The axis of row r, linear or angular.
+  GPUSOLVE_HD const math::Vector3<T>& axis(std::size_t r) const { return q[r < L ? r : r - L]; }
+  // The linear impulse in world coordinates: the linear rows of Q x.
+  GPUSOLVE_HD math::Vector3<T> linear(const T* x) const {
     math::Vector3<T> p = q[0] * x[0];
-    for (std::size_t r = 1; r < Model::rows; ++r) p += q[r] * x[r];
+    for (std::size_t r = 1; r < L; ++r) p += q[r] * x[r];
     return p;
+  }
+  // The angular impulse in world coordinates (zero without angular rows).
+  GPUSOLVE_HD math::Vector3<T> angular(const T* x) const {
+    math::Vector3<T> m;
+    for (std::size_t r = L; r < R; ++r) m += q[r - L] * x[r];
+    return m;
+  }
+  // Q^T: the rows of a linear vector u and an angular one w (a relative
+  // velocity and angular velocity, or a linear and an angular impulse).
+  GPUSOLVE_HD void rows(const math::Vector3<T>& u, const math::Vector3<T>& w, T* out) const {
+    for (std::size_t r = 0; r < L; ++r) out[r] = math::dot(q[r], u);
+    for (std::size_t r = L; r < R; ++r) out[r] = math::dot(q[r - L], w);
   }
 };
 
@@ -84,6 +103,28 @@ struct BodyResponse {
     dva = b.inv_mass[ia] * p, dwa = math::load9<T>(b.inv_inertia, ia) * (ra % p);
     dvb = -(b.inv_mass[ib] * p), dwb = -(math::load9<T>(b.inv_inertia, ib) * (rb % p));
   }
+  // The same with an angular impulse m as well, on a and, opposite, on b (a
+  // model's angular rows). Apart from the two above so that a model without
+  // angular rows computes exactly what it did.
+  GPUSOLVE_HD BodyResponse(const ContactBodies<T>& k, const math::Vector3<T>& p, const math::Vector3<T>& m)
+      : ia(k.ia), ib(k.ib), move_a(k.move_a), move_b(k.move_b), ra(k.ra), rb(k.rb) {
+    dva = k.ma * p, dwa = k.Ia * (ra % p + m);
+    dvb = -(k.mb * p), dwb = -(k.Ib * (rb % p + m));
+  }
+  template <class BV, class CV>
+  GPUSOLVE_HD BodyResponse(const BV& b, const CV& c, std::size_t i, const math::Vector3<T>& p,
+                           const math::Vector3<T>& m)
+      : ia(c.a[i]), ib(c.b[i]), move_a(b.moving(ia)), move_b(b.moving(ib)), ra(math::load3<T>(c.ra, i)),
+        rb(math::load3<T>(c.rb, i)) {
+    dva = b.inv_mass[ia] * p, dwa = math::load9<T>(b.inv_inertia, ia) * (ra % p + m);
+    dvb = -(b.inv_mass[ib] * p), dwb = -(math::load9<T>(b.inv_inertia, ib) * (rb % p + m));
+  }
+  // The change of the contact's relative velocity rows (Q^T of the relative
+  // point velocity and angular velocity) that this response causes.
+  template <class Model, class CV>
+  GPUSOLVE_HD void rows(const Frame<T, Model, CV>& f, T* out) const {
+    f.rows(point_velocity(dva, dwa, ra) - point_velocity(dvb, dwb, rb), dwa - dwb, out);
+  }
   // Hands contact i's changes to the sink: Sink::add(i, response) applies or
   // records those of the moving bodies.
   template <class Sink>
@@ -107,6 +148,21 @@ GPUSOLVE_HD BodyResponse<T> response_of(const ContactBodies<T>& k, const BV&, co
   return BodyResponse<T>(k, p);
 }
 
+// The response to the impulse rows x of contact i in frame f, from the bodies
+// `bodies` names: linear and angular where the model has angular rows.
+template <class T, class Model, class Bodies, class BV, class CV>
+GPUSOLVE_HD BodyResponse<T> response_of(const Bodies& bodies, const BV& b, const CV& c, std::size_t i,
+                                        const Frame<T, Model, CV>& f, const T* x) {
+  if constexpr (Model::rows > Model::linear_rows) {
+    if constexpr (std::is_same_v<Bodies, LoadBodies>)
+      return BodyResponse<T>(b, c, i, f.linear(x), f.angular(x));
+    else
+      return BodyResponse<T>(bodies, f.linear(x), f.angular(x));
+  } else {
+    return response_of<T>(bodies, b, c, i, f.linear(x));
+  }
+}
+
 // Applies a contact's velocity change to its body at once: what makes a
 // sweep Gauss-Seidel (each contact sees the updates of the contacts before it).
 // Safe in parallel only over contacts that share no moving body (a colour).
@@ -125,8 +181,9 @@ struct DirectSink {
 }  // namespace detail
 
 // The contact's step dinv from its own diagonal block W = Q^T (K_a + K_b) Q
-// with, per body, K p = m^-1 p + (I^-1 (r x p)) x r (= (m^-1 E - r× I^-1 r×) p),
-// projected to the model's rows. Fixed bodies contribute nothing (zero inverse
+// with, per body, K p = m^-1 p + (I^-1 (r x p)) x r (= (m^-1 E - r× I^-1 r×) p)
+// on a linear row and q . I^-1 q on an angular row about q, projected to the
+// model's rows. Fixed bodies contribute nothing (zero inverse
 // mass and inertia). Run once per step, after collision detection.
 // dinv is diagonal, and stored as its diagonal (one value per row): the normal
 // row steps by 1 / W_nn, both friction rows by one scalar, 1 / max(W_tt, W_oo).
@@ -154,23 +211,26 @@ struct InverseBlocks {
   const T* scale = nullptr;
   bool shared = true;  // a pair's k points take 1/k of a step each
   GPUSOLVE_HD void operator()(std::size_t i) const {
-    constexpr std::size_t R = Model::rows;
+    constexpr std::size_t R = Model::rows, L = Model::linear_rows;
     const detail::Frame<T, Model, CV> f(c, i);
     const std::uint32_t ids[2] = {c.a[i], c.b[i]};
     const math::Vector3<T> rs[2] = {math::load3<T>(c.ra, i), math::load3<T>(c.rb, i)};
-    T W[R][R] = {};
+    T W[R] = {};  // the diagonal of W
     for (int s = 0; s < 2; ++s) {
       const std::uint32_t k = ids[s];
       const T im = b.inv_mass[k];
       const math::Matrix3x3<T> Iinv = math::load9<T>(b.inv_inertia, k);
-      for (std::size_t col = 0; col < R; ++col) {
-        const math::Vector3<T> Kq = im * f.q[col] + (Iinv * (rs[s] % f.q[col])) % rs[s];
-        for (std::size_t row = 0; row < R; ++row) W[row][col] += math::dot(f.q[row], Kq);
-      }
+      for (std::size_t r = 0; r < L; ++r)
+        W[r] += math::dot(f.q[r], im * f.q[r] + (Iinv * (rs[s] % f.q[r])) % rs[s]);
+      for (std::size_t r = L; r < R; ++r) W[r] += math::dot(f.q[r - L], Iinv * f.q[r - L]);
     }
     const T s = (scale ? *scale : T(1)) / (shared ? T(pair_points(i)) : T(1));
-    c.dinv(i, 0) = s / W[0][0];
-    if constexpr (R == 3) c.dinv(i, 1) = c.dinv(i, 2) = s / (W[1][1] > W[2][2] ? W[1][1] : W[2][2]);
+    c.dinv(i, 0) = s / W[0];
+    if constexpr (L == 3) c.dinv(i, 1) = c.dinv(i, 2) = s / (W[1] > W[2] ? W[1] : W[2]);
+    if constexpr (R > L) {  // torsion about n, rolling about t and o by one scalar, as the friction rows
+      c.dinv(i, 3) = s / W[3];
+      c.dinv(i, 4) = c.dinv(i, 5) = s / (W[4] > W[5] ? W[4] : W[5]);
+    }
   }
   // The contacts of contact i's body pair: its neighbours in the (a, b) order
   // with the same bodies (a manifold's up to max_manifold_points; a compound's
@@ -186,7 +246,8 @@ struct InverseBlocks {
 };
 
 // CalcNextPhi (thesis Algorithm 1): the contact-space error of the current
-// velocities, rhs = Q^T (va + wa x ra - vb - wb x rb) + (phi / dt, 0, 0).
+// velocities, rhs = Q^T (va + wa x ra - vb - wb x rb) + (phi / dt, 0, 0), and
+// on angular rows the relative angular velocity wa - wb about their axes.
 // The normal row asks for a gap rate of at least -phi0/dt: a contact still
 // open by phi0 may close within the step but no further (it is not pushed
 // apart early). A penetration (phi0 < 0) is removed only by the fraction
@@ -217,7 +278,7 @@ struct CalcNextPhi {
     it.velocity(b, ib, vb, wb);
     const math::Vector3<T> du = detail::point_velocity(va, wa, math::load3<T>(c.ra, i)) -
                                 detail::point_velocity(vb, wb, math::load3<T>(c.rb, i));
-    for (std::size_t r = 0; r < Model::rows; ++r) e[r] = math::dot(f.q[r], du);
+    f.rows(du, wa - wb, e);
     const T phi0 = c.phi0[i], bounce = c.bounce[i], approach = e[0];
     e[0] += (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;  // as without restitution, to the bit
     if (bounce > T(0)) e[0] = approach - bounce;
@@ -232,7 +293,8 @@ struct CalcNextPhi {
 // THE LCP RESIDUAL (defined here, once): with measure set, residual[i] is the
 // largest component, in the contact frame, of the change of the relative
 // velocity at contact i caused by contact i's own projected update in this
-// iteration, |Q^T W Q (x' - x)|_inf, in m/s; the solver's residual is its maximum
+// iteration, |Q^T W Q (x' - x)|_inf, in m/s (on a model's angular rows, of the
+// relative angular velocity, in rad/s); the solver's residual is its maximum
 // over contacts. It is zero exactly at a fixed point of the projected iteration
 // (a solution of the LCP) and says by how much the next projected step would
 // still change a contact velocity. A NaN or infinite value is stored as +inf,
@@ -264,20 +326,18 @@ struct ResolveCollisions {
     T x0[R], y[R], x[R], dx[R];
     it.start(c, i, x0, y);
     for (std::size_t r = 0; r < R; ++r) x[r] = y[r] - omega * (c.dinv(i, r) * e[r]);
-    T mu = T(0);
-    if constexpr (Model::friction) mu = c.mu[i];
-    Model::project(x, mu);
+    Model::project(x, limits_of<Model, T>(c, i));
     for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - y[r];
-    const detail::BodyResponse<T> d = detail::response_of<T>(bodies, b, c, i, f.world(dx));
+    const detail::BodyResponse<T> d = detail::response_of<T>(bodies, b, c, i, f, dx);
     d.send(sink, i);
     it.store(c, i, e, x0, x);
     if (measure) {
-      const math::Vector3<T> du =
-          detail::point_velocity(d.dva, d.dwa, d.ra) - detail::point_velocity(d.dvb, d.dwb, d.rb);
+      T du[R];
+      d.rows(f, du);
       T m = 0;
       bool finite = true;
       for (std::size_t r = 0; r < R; ++r) {
-        const T e = std::fabs(math::dot(f.q[r], du));
+        const T e = std::fabs(du[r]);
         finite = finite && e <= std::numeric_limits<T>::max();  // false for NaN and inf
         m = e > m ? e : m;
       }
@@ -323,7 +383,7 @@ struct ApplyImpulses {
     T x[Model::rows];
     for (std::size_t r = 0; r < Model::rows; ++r) x[r] = c.x(i, r);
     const detail::Frame<T, Model, CV> f(c, i);
-    detail::BodyResponse<T>(b, c, i, f.world(x)).send(sink, i);
+    detail::response_of<T>(detail::LoadBodies{}, b, c, i, f, x).send(sink, i);
   }
 };
 

@@ -23,7 +23,8 @@ namespace gpusolve::rbd {
 namespace detail {
 
 // The impulse a contact keeps for the next step, Model::rows values. With
-// friction the world vector Q x: the tangents are rebuilt from each step's
+// friction the world vector Q x (linear, then angular where the model has
+// angular rows): the tangents are rebuilt from each step's
 // normal (Contacts::View::set_tangents) and may turn, even swap axes, from one
 // step to the next, so the impulse is re-expressed in the new frame rather than
 // copied row by row. Frictionless: the normal impulse itself.
@@ -42,10 +43,16 @@ struct RememberImpulse {
     if (i >= n) return;
     keys[i] = pair_key(c.a[i], c.b[i]);
     features[i] = c.feature[i];
-    if constexpr (Model::rows == 3) {
-      T x[3] = {c.x(i, 0), c.x(i, 1), c.x(i, 2)};
-      const math::Vector3<T> w = Frame<T, Model, CV>(c, i).world(x);
+    if constexpr (Model::linear_rows == 3) {
+      T x[Model::rows];
+      for (std::size_t r = 0; r < Model::rows; ++r) x[r] = c.x(i, r);
+      const Frame<T, Model, CV> f(c, i);
+      const math::Vector3<T> w = f.linear(x);
       for (std::size_t k = 0; k < 3; ++k) p(i, k) = w[k];
+      if constexpr (Model::rows > 3) {
+        const math::Vector3<T> m = f.angular(x);
+        for (std::size_t k = 0; k < 3; ++k) p(i, 3 + k) = m[k];
+      }
     } else {
       p(i, 0) = c.x(i, 0);
     }
@@ -96,16 +103,17 @@ struct CarryImpulse {
     while (j < count && keys[j] == key && features[j] != feature) ++j;
     T x[R] = {};
     if (j < count && keys[j] == key) {
-      if constexpr (R == 3) {
+      if constexpr (Model::linear_rows == 3) {
         const Frame<T, Model, CV> f(c, i);
         const math::Vector3<T> w(p(j, 0), p(j, 1), p(j, 2));
-        for (std::size_t r = 0; r < R; ++r) x[r] = factor * math::dot(f.q[r], w);
+        math::Vector3<T> m;
+        if constexpr (R > 3) m = math::Vector3<T>(p(j, 3), p(j, 4), p(j, 5));
+        f.rows(w, m, x);
+        for (std::size_t r = 0; r < R; ++r) x[r] *= factor;
       } else {
         x[0] = factor * p(j, 0);
       }
-      T mu = T(0);
-      if constexpr (Model::friction) mu = c.mu[i];
-      Model::project(x, mu);
+      Model::project(x, limits_of<Model, T>(c, i));
     }
     for (std::size_t r = 0; r < R; ++r) c.x(i, r) = x[r];
   }
