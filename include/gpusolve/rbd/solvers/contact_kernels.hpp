@@ -32,8 +32,6 @@ struct Frame {
       q[2] = math::load3<T>(c.o, i);
     }
   }
-  // The axis of row r, linear or angular.
-  GPUSOLVE_HD const math::Vector3<T>& axis(std::size_t r) const { return q[r < L ? r : r - L]; }
   // The linear impulse in world coordinates: the linear rows of Q x.
   GPUSOLVE_HD math::Vector3<T> linear(const T* x) const {
     math::Vector3<T> p = q[0] * x[0];
