@@ -40,7 +40,6 @@ def main():
     any_row = next(iter(angles.values()), {})
     left.set_xlabel("distance from the pile's axis")
     left.set_ylabel("highest centre in the ring")
-    left.set_aspect("equal", adjustable="datalim")
     left.legend(fontsize=7)
     lines = {}
     for (kind, mu, rolling), r in sorted(angles.items()):
