@@ -60,6 +60,29 @@ TEST_CASE("an impossible host allocation throws OutOfMemoryError naming the byte
   CHECK_THROWS_AS(VectorD1<double>(std::numeric_limits<std::size_t>::max() / 4), OutOfMemoryError);
 }
 
+TEST_CASE("an allocation that fails names what it was for, inside the innermost label", "[memory]") {
+  const std::size_t huge = std::numeric_limits<std::size_t>::max() / 2;
+  auto message = [&] {
+    try {
+      (void)memory::StandardAllocator::allocate(huge);
+    } catch (const OutOfMemoryError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no OutOfMemoryError");
+  };
+  CHECK(message().find(" for ") == std::string::npos);  // no label: the bytes and the allocator only
+  {
+    const memory::AllocationLabel outer("the solver");
+    CHECK(message().find(std::to_string(huge) + " bytes for the solver") != std::string::npos);
+    {
+      const memory::AllocationLabel inner("contacts");
+      CHECK(message().find("bytes for contacts") != std::string::npos);
+    }
+    CHECK(memory::AllocationLabel::now() == std::string("the solver"));  // the inner one ended with its scope
+  }
+  CHECK(memory::AllocationLabel::now() == nullptr);
+}
+
 TEST_CASE("containers allocate and free through a user allocator", "[memory][container]") {
   const std::size_t before = TrackingAllocator::live_bytes;
   {

@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "catch_compat.hpp"
@@ -231,4 +233,16 @@ TEST_CASE("collision detection on a random cloud matches a brute-force contact s
     REQUIRE(((std::uint64_t(c.a(k)) << 32) | c.b(k)) == expected[k]);  // also proves the (a, b) order
     CHECK(c.phi0(k) < margin);
   }
+}
+
+TEST_CASE("contacts that cannot grow throw OutOfMemoryError naming the contacts and the bytes", "[rbd][collision]") {
+  Contacts<device::cpu, float, ConeFriction> c(8);
+  try {
+    c.resize(std::numeric_limits<std::size_t>::max() / 8);
+    FAIL("no OutOfMemoryError");
+  } catch (const OutOfMemoryError& e) {
+    CHECK(std::string(e.what()).find("bytes for contacts") != std::string::npos);
+  }
+  CHECK(c.size() == 8);  // the failed growth left the count and the capacity as they were
+  CHECK(c.capacity() == 8);
 }

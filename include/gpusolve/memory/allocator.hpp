@@ -6,6 +6,8 @@
 #include <string>
 #include <type_traits>
 
+#include "gpusolve/memory/allocation_label.hpp"
+
 namespace gpusolve::memory {
 
 // Where an allocation lives; copies pick their direction from these tags.
@@ -44,9 +46,11 @@ inline constexpr bool is_allocator_v = is_allocator<A>::value;
 inline constexpr std::size_t allocation_alignment = 256;
 
 namespace detail {
+// "gpusolve: <who> could not allocate <bytes> bytes for <label> (<why>)".
 inline std::string oom_message(const char* who, std::size_t bytes, const std::string& why) {
   std::ostringstream os;
   os << "gpusolve: " << who << " could not allocate " << bytes << " bytes";
+  if (const char* label = AllocationLabel::now()) os << " for " << label;
   if (!why.empty()) os << " (" << why << ')';
   return os.str();
 }

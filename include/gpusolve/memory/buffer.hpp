@@ -70,7 +70,8 @@ class Buffer {
   static T* allocate(std::size_t count) {
     if (count > std::numeric_limits<std::size_t>::max() / sizeof(T))
       throw OutOfMemoryError(std::numeric_limits<std::size_t>::max(),
-                             "gpusolve: element count overflows the size of an allocation");
+                             detail::oom_message("Buffer", std::numeric_limits<std::size_t>::max(),
+                                                 "the element count overflows the size of an allocation"));
     T* p = static_cast<T*>(Alloc::allocate(count * sizeof(T)));
     detail::count_allocation<memory_kind>(count * sizeof(T));
     return p;

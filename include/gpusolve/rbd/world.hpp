@@ -20,6 +20,7 @@
 #include "gpusolve/rbd/execution/device_algorithms.hpp"
 #include "gpusolve/rbd/execution/unattended.hpp"
 #include "gpusolve/rbd/execution/stream_marks.hpp"
+#include "gpusolve/memory/allocation_label.hpp"
 #include "gpusolve/memory/buffer.hpp"
 #include "gpusolve/memory/cuda_host_allocator.hpp"
 #include "gpusolve/memory/standard_allocator.hpp"
@@ -159,13 +160,22 @@ class World {
     try {
       require_model_materials();
       mark(slot, begun);
-      detect(hold);
+      {
+        const memory::AllocationLabel label("collision detection");
+        detect(hold);
+      }
       mark(slot, detected);
       apply_forces(hold);
       const bool warm = warm_start(hold);
-      pending = solve(warm, hold, k, stats.solver);
+      {
+        const memory::AllocationLabel label("the solver");
+        pending = solve(warm, hold, k, stats.solver);
+      }
       mark(slot, solved);
-      end_step(warm, hold, k, slot);
+      {
+        const memory::AllocationLabel label("the warm start and the step's figures");
+        end_step(warm, hold, k, slot);
+      }
       slot.marks_.mark(figures_written, stream_);
     } catch (const NonFiniteStateError& e) {  // found by detection, nothing moved: say which step it stopped
       slot.timed = false;                      // its marks were overwritten

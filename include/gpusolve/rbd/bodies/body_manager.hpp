@@ -9,6 +9,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/core/error.hpp"
+#include "gpusolve/memory/allocation_label.hpp"
 #include "gpusolve/memory/copy.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/bodies/body_set.hpp"
@@ -92,6 +93,7 @@ class BodyManager {
   }
 
   SyncReport sync(bool full, stream_t stream) {
+    const memory::AllocationLabel label("bodies");
     auto& recs = host_.records();
     SyncReport rep;
     for (std::size_t i : removed_) {

@@ -12,6 +12,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/core/error.hpp"
+#include "gpusolve/memory/allocation_label.hpp"
 #include "gpusolve/rbd/contact_models/contact_model.hpp"
 #include "gpusolve/rbd/contacts/extent.hpp"
 #include "gpusolve/container/logical_view.hpp"
@@ -61,6 +62,7 @@ struct Contacts {
   // afterwards.
   void resize(std::size_t count) {
     if (count > capacity_) {
+      const memory::AllocationLabel label("contacts");
       std::size_t cap = capacity_ + capacity_ / 2;
       if (cap < count) cap = count;
       a.resize(cap);
