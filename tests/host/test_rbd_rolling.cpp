@@ -17,14 +17,6 @@ namespace {
 
 constexpr double R = 0.5;
 
-template <class F>
-void for_every_rolling_method(F&& f) {
-  f(AcceleratedJacobi<Gather>{});
-  f(Jacobi<Gather>{});
-  f(ColouredGaussSeidel{});
-  f(Substepping<>{});
-}
-
 SolverSettings<double> tight(double rolling, double spinning) {
   SolverSettings<double> s;
   s.dt = 1e-3, s.margin = 0.02, s.tolerance = 1e-10, s.max_iterations = 400;
@@ -54,7 +46,7 @@ double rolled_speed(double theta, double v0, double rolling, double t, double* t
 }  // namespace
 
 TEST_CASE("a rolling sphere decelerates at (5/7) g eta / R with every method", "[rbd_physics][rolling]") {
-  for_every_rolling_method([](auto method) {
+  for_every_method<ConeRollingFriction>([](auto method) {
     using Method = decltype(method);
     INFO(Method::name);
     const double eta = 0.01, v0 = 2, t = 1;
@@ -66,7 +58,7 @@ TEST_CASE("a rolling sphere decelerates at (5/7) g eta / R with every method", "
 TEST_CASE("a sphere rests on an incline iff tan(theta) <= eta / R, else rolls down at (5/7) g (sin - eta/R cos)",
           "[rbd_physics][rolling]") {
   const double eta = 0.05;  // eta / R = 0.1: 5.71 degrees
-  for_every_rolling_method([&](auto method) {
+  for_every_method<ConeRollingFriction>([&](auto method) {
     using Method = decltype(method);
     INFO(Method::name);
     double travel = 0;
@@ -81,7 +73,7 @@ TEST_CASE("a sphere rests on an incline iff tan(theta) <= eta / R, else rolls do
 
 TEST_CASE("a sphere spinning about the normal stops after 2 R^2 w0 / (5 g mu_s) with every method",
           "[rbd_physics][rolling]") {
-  for_every_rolling_method([](auto method) {
+  for_every_method<ConeRollingFriction>([](auto method) {
     using Method = decltype(method);
     INFO(Method::name);
     const double mu_s = 0.02, w0 = 2;
