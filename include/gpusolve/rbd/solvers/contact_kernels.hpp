@@ -213,21 +213,24 @@ struct InverseBlocks {
     const detail::Frame<T, Model, CV> f(c, i);
     const std::uint32_t ids[2] = {c.a[i], c.b[i]};
     const math::Vector3<T> rs[2] = {math::load3<T>(c.ra, i), math::load3<T>(c.rb, i)};
-    T W[R] = {};  // the diagonal of W
+    T W[L][L] = {};      // the linear rows' block
+    T A[R - L + 1] = {};  // the angular rows' diagonal (one spare entry: never empty)
     for (int s = 0; s < 2; ++s) {
       const std::uint32_t k = ids[s];
       const T im = b.inv_mass[k];
       const math::Matrix3x3<T> Iinv = math::load9<T>(b.inv_inertia, k);
-      for (std::size_t r = 0; r < L; ++r)
-        W[r] += math::dot(f.q[r], im * f.q[r] + (Iinv * (rs[s] % f.q[r])) % rs[s]);
-      for (std::size_t r = L; r < R; ++r) W[r] += math::dot(f.q[r - L], Iinv * f.q[r - L]);
+      for (std::size_t col = 0; col < L; ++col) {
+        const math::Vector3<T> Kq = im * f.q[col] + (Iinv * (rs[s] % f.q[col])) % rs[s];
+        for (std::size_t row = 0; row < L; ++row) W[row][col] += math::dot(f.q[row], Kq);
+      }
+      for (std::size_t r = L; r < R; ++r) A[r - L] += math::dot(f.q[r - L], Iinv * f.q[r - L]);
     }
     const T s = (scale ? *scale : T(1)) / (shared ? T(pair_points(i)) : T(1));
-    c.dinv(i, 0) = s / W[0];
-    if constexpr (L == 3) c.dinv(i, 1) = c.dinv(i, 2) = s / (W[1] > W[2] ? W[1] : W[2]);
+    c.dinv(i, 0) = s / W[0][0];
+    if constexpr (L == 3) c.dinv(i, 1) = c.dinv(i, 2) = s / (W[1][1] > W[2][2] ? W[1][1] : W[2][2]);
     if constexpr (R > L) {  // torsion about n, rolling about t and o by one scalar, as the friction rows
-      c.dinv(i, 3) = s / W[3];
-      c.dinv(i, 4) = c.dinv(i, 5) = s / (W[4] > W[5] ? W[4] : W[5]);
+      c.dinv(i, 3) = s / A[0];
+      c.dinv(i, 4) = c.dinv(i, 5) = s / (A[1] > A[2] ? A[1] : A[2]);
     }
   }
   // The contacts of contact i's body pair: its neighbours in the (a, b) order
