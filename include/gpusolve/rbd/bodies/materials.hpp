@@ -61,8 +61,9 @@ GPUSOLVE_HD Material<T> combine_materials(const Material<T>& a, const Material<T
 
 // The host's list: material 0 is the world's default, whose friction,
 // restitution, rolling and spinning come from the solver settings
-// (ContactSettings::friction, ::restitution, ::rolling, ::spinning) at every step; add() gives ids 1, 2, ... Pair entries
-// between two added materials override the combination.
+// (ContactSettings::friction, ::restitution, ::rolling, ::spinning) at every
+// step; add() gives ids 1, 2, ... Pair entries between two added materials
+// override the combination.
 template <class T = float>
 class MaterialList {
  public:
