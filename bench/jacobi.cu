@@ -83,8 +83,7 @@ double bytes_per_iteration(const Census& c, std::size_t passes) {
   const double frame = 3 * f * (Model::friction ? 3 : 1);
   const double geometry = 2 * f /*a, b*/ + frame + 6 * f /*ra, rb*/;
   const double next_phi = nc * (geometry + f /*phi0*/ + 12 * f /*v, w of a and b*/ + R * f /*rhs*/);
-  const double steps = rbd::row_steps<Model>;  // dinv's values per contact
-  const double resolve = nc * (geometry + steps * f /*dinv*/ + R * f /*rhs*/ + 2 * R * f /*x read, write*/ +
+  const double resolve = nc * (geometry + R * f /*dinv*/ + R * f /*rhs*/ + 2 * R * f /*x read, write*/ +
                                (Model::friction ? f : 0) /*mu*/ + 2 * f /*inv_mass*/ + 18 * f /*inv_inertia*/ +
                                2 /*status*/);
   double acc = 0;

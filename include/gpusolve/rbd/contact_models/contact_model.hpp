@@ -18,4 +18,3 @@
 #include "gpusolve/rbd/contact_models/contact_limits.hpp"
 #include "gpusolve/rbd/contact_models/frictionless.hpp"
 #include "gpusolve/rbd/contact_models/pyramid_friction.hpp"
-#include "gpusolve/rbd/contact_models/row_steps.hpp"

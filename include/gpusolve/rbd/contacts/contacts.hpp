@@ -51,7 +51,7 @@ struct Contacts {
   VecD1 mu;                // friction coefficient
   VecD1 spin, roll;        // torsional and rolling resistance, lengths (models with angular rows)
   VecD1 bounce;            // separation speed restitution asks for (0: none), materials.hpp
-  VecD2 dinv;              // n x row_steps<Model>: the steps of the rows (the diagonal of D, InverseBlocks)
+  VecD2 dinv;              // n x rows: the step of each row (the diagonal of D, InverseBlocks)
   VecD2 x;                 // n x rows: impulse (normal, t, o)
 
   Contacts() = default;
@@ -71,7 +71,7 @@ struct Contacts {
       phi0.resize(cap);
       bounce.resize(cap);
       for (VecD2* f : {&n, &ra, &rb}) f->resize(cap, 3);
-      dinv.resize(cap, row_steps<Model>);
+      dinv.resize(cap, rows);
       x.resize(cap, rows);
       if constexpr (Model::friction) {
         t.resize(cap, 3);

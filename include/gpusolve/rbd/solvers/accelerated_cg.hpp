@@ -191,7 +191,7 @@ struct Classify {
     const T mu = c.mu[i];
     if (is_free(x, mu)) {
       T s = 0;
-      for (std::size_t r = 0; r < R; ++r) s += (c.dinv(i, row_step<Model>(r)) * e[r]) * e[r];
+      for (std::size_t r = 0; r < R; ++r) s += (c.dinv(i, r) * e[r]) * e[r];
       rz[i] = s, chop[i] = T(0);
     } else {
       T xp[R], dx[R];
@@ -200,7 +200,7 @@ struct Classify {
       bool outside = false;
       for (std::size_t r = 0; r < R; ++r)
         outside = outside || std::fabs(xp[r] - x[r]) > T(1e-6) * (std::fabs(x[0]) + T(1e-30));
-      for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - omega * (c.dinv(i, row_step<Model>(r)) * e[r]);
+      for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - omega * (c.dinv(i, r) * e[r]);
       Model::project(dx, ContactLimits<T>{mu});
       for (std::size_t r = 0; r < R; ++r) dx[r] -= x[r];
       const detail::Frame<T, Model, CV> f(c, i);
@@ -252,7 +252,7 @@ struct Direction {
     const bool free = is_free(x, mu);
     T s = 0;
     for (std::size_t r = 0; r < R; ++r) {
-      const T z = c.dinv(i, row_step<Model>(r)) * e[r];
+      const T z = c.dinv(i, r) * e[r];
       d[r] = free ? -z + beta * p(i, r) : T(0);
       p(i, r) = d[r];
       s -= e[r] * d[r];

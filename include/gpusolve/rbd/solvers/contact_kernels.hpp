@@ -12,7 +12,6 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/contact_models/contact_limits.hpp"
-#include "gpusolve/rbd/contact_models/row_steps.hpp"
 #include "gpusolve/rbd/solvers/iterate.hpp"
 
 namespace gpusolve::rbd {
@@ -184,8 +183,8 @@ struct DirectSink {
 // on a linear row and q . I^-1 q on an angular row about q, projected to the
 // model's rows. Fixed bodies contribute nothing (zero inverse
 // mass and inertia). Run once per step, after collision detection.
-// dinv is diagonal, and stored as its distinct values (row_steps.hpp): the
-// normal row steps by 1 / W_nn, both friction rows by one scalar, 1 / max(W_tt, W_oo).
+// dinv is diagonal, and stored as its diagonal (one value per row): the normal
+// row steps by 1 / W_nn, both friction rows by one scalar, 1 / max(W_tt, W_oo).
 // A fixed point of x = proj(x - D r) solves the contact problem only where D
 // keeps the cone's geometry: with the full W^-1, the normal and friction rows
 // of a point off a body's centre line (a box's corner) are coupled, and the
@@ -227,11 +226,11 @@ struct InverseBlocks {
       for (std::size_t r = L; r < R; ++r) A[r - L] += math::dot(f.q[r - L], Iinv * f.q[r - L]);
     }
     const T s = (scale ? *scale : T(1)) / (shared ? T(pair_points(i)) : T(1));
-    c.dinv(i, row_step<Model>(0)) = s / W[0][0];
-    if constexpr (L == 3) c.dinv(i, row_step<Model>(1)) = s / (W[1][1] > W[2][2] ? W[1][1] : W[2][2]);
+    c.dinv(i, 0) = s / W[0][0];
+    if constexpr (L == 3) c.dinv(i, 1) = c.dinv(i, 2) = s / (W[1][1] > W[2][2] ? W[1][1] : W[2][2]);
     if constexpr (R > L) {  // torsion about n, rolling about t and o by one scalar, as the friction rows
-      c.dinv(i, row_step<Model>(L)) = s / A[0];
-      c.dinv(i, row_step<Model>(L + 1)) = s / (A[1] > A[2] ? A[1] : A[2]);
+      c.dinv(i, 3) = s / A[0];
+      c.dinv(i, 4) = c.dinv(i, 5) = s / (A[1] > A[2] ? A[1] : A[2]);
     }
   }
   // The contacts of contact i's body pair: its neighbours in the (a, b) order
@@ -327,7 +326,7 @@ struct ResolveCollisions {
     const detail::Frame<T, Model, CV> f(c, i);
     T x0[R], y[R], x[R], dx[R];
     it.start(c, i, x0, y);
-    for (std::size_t r = 0; r < R; ++r) x[r] = y[r] - omega * (c.dinv(i, row_step<Model>(r)) * e[r]);
+    for (std::size_t r = 0; r < R; ++r) x[r] = y[r] - omega * (c.dinv(i, r) * e[r]);
     Model::project(x, limits_of<Model, T>(c, i));
     for (std::size_t r = 0; r < R; ++r) dx[r] = x[r] - y[r];
     const detail::BodyResponse<T> d = detail::response_of<T>(bodies, b, c, i, f, dx);
