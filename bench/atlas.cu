@@ -3,7 +3,7 @@
 // penetration and the LCP residual it bought, and whether each step converged.
 //
 // Run: gpusolve_bench_atlas --scene pile|cubes|mixed|clumps|unions|column|pyramid|stack|field|slabs|hopper [--n 10000,100000] [--ratios 1,100,1000]
-//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,s4x5,tol0.02,check10]
+//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,s4x5,tol0.02,check10,launched]
 //        [--margins 0.1]
 //        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]
 //
@@ -141,8 +141,11 @@ SolverSettings<T> settings_for(const Run& r) {
     s.tolerance = std::numeric_limits<T>::min();
   } else if (r.budget.rfind("check", 0) == 0) {
     s.check_every = std::stoul(r.budget.substr(5));
+  } else if (r.budget == "launched") {
+    s.persistent_max_contacts = 0;  // the defaults, as launches instead of the persistent kernel
   } else if (r.budget != "default") {
-    throw InvalidArgumentError("atlas: unknown budget '" + r.budget + "' (default, itK, sSxK, tolX or checkK)");
+    throw InvalidArgumentError("atlas: unknown budget '" + r.budget +
+                               "' (default, itK, sSxK, tolX, checkK or launched)");
   }
   return s;
 }

@@ -1,7 +1,8 @@
 // The persistent solver kernel (execution/persistent_loop.hpp) against the same
 // iterations launched one kernel at a time: the same functors in the same
-// order, so Jacobi's two deterministic strategies agree bit for bit; APGD's
-// momentum sums its restart test in another order, so it agrees to rounding.
+// order, so Jacobi's two deterministic strategies and coloured Gauss-Seidel
+// agree bit for bit; APGD's momentum sums its restart test in another order,
+// so it agrees to rounding.
 // These scenes' kernels fit in one thread-block cluster; at the end, the
 // cluster against the cooperative grid.
 #include <cstddef>
@@ -17,9 +18,10 @@ using namespace rbd_test;
 
 namespace {
 
-// Runs to the cap unless `tune` lowers it or changes the tolerance or omega.
-template <class Strategy, class MomentumTag, class Tune = void (*)(SolverSettings<float>&)>
-std::pair<std::vector<float>, SolverStats<float>> solve_once(bool persistent, std::size_t check_every,
+// One solve by `Solver` on the GPU; runs to the cap unless `tune` lowers it
+// or changes the tolerance or omega.
+template <class Solver, class Tune = void (*)(SolverSettings<float>&)>
+std::pair<std::vector<float>, SolverStats<float>> solve_with(bool persistent, std::size_t check_every,
                                                              Tune tune = [](SolverSettings<float>&) {}) {
   auto set = pile<float>(6, 5);
   BodyManager<device::gpu, float> m(set);
@@ -31,10 +33,30 @@ std::pair<std::vector<float>, SolverStats<float>> solve_once(bool persistent, st
   tune(s);
   s.persistent_max_contacts = persistent ? ~std::size_t(0) : 0;
   prepare_solve(m.device(), c, s);
-  const auto stats = JacobiSolver<device::gpu, float, ConeFriction, Strategy, MomentumTag>().solve(m.device(), c, s);
+  const auto stats = Solver().solve(m.device(), c, s);
   Bodies<device::cpu, float> host;
   host = m.device();
   return {velocities(host), stats};
+}
+
+template <class Strategy, class MomentumTag, class Tune = void (*)(SolverSettings<float>&)>
+std::pair<std::vector<float>, SolverStats<float>> solve_once(bool persistent, std::size_t check_every,
+                                                             Tune tune = [](SolverSettings<float>&) {}) {
+  return solve_with<JacobiSolver<device::gpu, float, ConeFriction, Strategy, MomentumTag>>(persistent, check_every,
+                                                                                           tune);
+}
+
+// The checks' figures of two solves, and the velocities they leave, the same.
+template <class Run>
+void check_same_solve(const Run& a, const Run& b) {
+  CHECK(a.first == b.first);
+  CHECK(a.second.status == b.second.status);
+  CHECK(a.second.iterations == b.second.iterations);
+  CHECK(a.second.total_iterations == b.second.total_iterations);
+  CHECK(a.second.retries == b.second.retries);
+  CHECK(a.second.omega == b.second.omega);
+  CHECK(a.second.residuals == b.second.residuals);
+  CHECK(a.second.checked_at == b.second.checked_at);
 }
 
 std::vector<float> positions(const BodySet<float>& set) {
@@ -68,16 +90,7 @@ TEST_CASE("GPU persistent Jacobi kernel equals the launches bit for bit", "[rbd_
 // check for the same reason and leave the same bits.
 TEST_CASE("GPU persistent kernel stops at the same check as the launches: converged, diverged, retried",
           "[rbd_persistent][gpu]") {
-  const auto same = [](const auto& a, const auto& b) {
-    CHECK(a.first == b.first);
-    CHECK(a.second.status == b.second.status);
-    CHECK(a.second.iterations == b.second.iterations);
-    CHECK(a.second.total_iterations == b.second.total_iterations);
-    CHECK(a.second.retries == b.second.retries);
-    CHECK(a.second.omega == b.second.omega);
-    CHECK(a.second.residuals == b.second.residuals);
-    CHECK(a.second.checked_at == b.second.checked_at);
-  };
+  const auto same = [](const auto& a, const auto& b) { check_same_solve(a, b); };
   {
     INFO("converges at a check before the cap");
     const auto tune = [](SolverSettings<float>& s) { s.tolerance = 1e-3f, s.max_iterations = 2000; };
@@ -104,6 +117,37 @@ TEST_CASE("GPU persistent kernel stops at the same check as the launches: conver
     const auto fused = solve_once<Gather, NoMomentum>(true, 10, tune);
     CHECK(fused.second.status == SolverStatus::diverged);
     same(fused, solve_once<Gather, NoMomentum>(false, 10, tune));
+  }
+}
+
+// Coloured Gauss-Seidel's colours as phases of one kernel: each colour's
+// contacts update the same bodies in the same order as a launch per colour.
+TEST_CASE("GPU persistent coloured Gauss-Seidel equals a launch per colour bit for bit", "[rbd_persistent][gpu]") {
+  using GaussSeidel = ColouredGaussSeidelSolver<device::gpu, float, ConeFriction>;
+  for (std::size_t every : {std::size_t(120), std::size_t(7)}) {
+    INFO("check_every " << every);
+    const auto fused = solve_with<GaussSeidel>(true, every);
+    REQUIRE(fused.second.contacts > 300);
+    CHECK(fused.second.colours >= 6);
+    CHECK(fused.second.iterations == 120);
+    check_same_solve(fused, solve_with<GaussSeidel>(false, every));
+  }
+  {
+    INFO("converges at a check before the cap");
+    const auto tune = [](SolverSettings<float>& s) { s.tolerance = 1e-3f, s.max_iterations = 2000; };
+    const auto fused = solve_with<GaussSeidel>(true, 5, tune);
+    CHECK(fused.second.status == SolverStatus::converged);
+    CHECK(fused.second.iterations < 2000);
+    check_same_solve(fused, solve_with<GaussSeidel>(false, 5, tune));
+  }
+  {
+    INFO("over-relaxed: its residual grows, a retry at a smaller omega converges, on the device as on the host");
+    const auto tune = [](SolverSettings<float>& s) {
+      s.omega = 1.8f, s.divergence_growth = 1.05f, s.tolerance = 2e-2f, s.max_iterations = 2000, s.max_retries = 3;
+    };
+    const auto fused = solve_with<GaussSeidel>(true, 10, tune);
+    CHECK(fused.second.retries >= 1);
+    check_same_solve(fused, solve_with<GaussSeidel>(false, 10, tune));
   }
 }
 

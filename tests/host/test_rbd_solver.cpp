@@ -275,6 +275,29 @@ TEST_CASE("adaptive under-relaxation: a diverging solve restarts at a smaller om
   CHECK(g.retries == s.max_retries);
   CHECK(g.omega == s.omega * std::pow(s.retry_omega_factor, double(s.max_retries)));
   CHECK(g.total_iterations == (s.max_retries + 1) * s.check_every);
+
+  // Over-relaxed Gauss-Seidel whose residual grows (omega 1.95, any growth of
+  // 5% counted) restarts at half the omega through the scaled blocks, and is
+  // then exactly a plain solve at that omega.
+  SolverSettings<double> over = s;
+  over.omega = 1.95, over.divergence_growth = 1.05, over.tolerance = 2e-2, over.max_iterations = 2000;
+  auto gauss_seidel = [&](const SolverSettings<double>& t) {
+    Store st(set);
+    st.syncDeviceFull();
+    Contacts<device::cpu, double, ConeFriction> c;
+    prepare_solve(st.device(), c, t);
+    const auto r = ColouredGaussSeidelSolver<device::cpu, double, ConeFriction>().solve(st.device(), c, t);
+    return std::make_pair(r, velocities(st.device()));
+  };
+  const auto [o, vo] = gauss_seidel(over);
+  CHECK(o.status == SolverStatus::converged);
+  REQUIRE(o.retries >= 1);
+  CHECK(o.omega == over.omega * std::pow(over.retry_omega_factor, double(o.retries)));
+  SolverSettings<double> plain = over;
+  plain.omega = o.omega, plain.max_retries = 0;
+  const auto [p, vp] = gauss_seidel(plain);
+  CHECK(p.iterations == o.iterations);
+  CHECK(max_abs_diff(vo, vp) == 0.0);
 }
 
 TEST_CASE("a retry's scaled inverse blocks are the blocks times the factor, exactly by a power of two",

@@ -2,6 +2,7 @@
 // contacts that share no moving body, on the contacts' backend.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -94,6 +95,38 @@ struct PickColour {
   }
 };
 
+// The colours of one build (ContactColouring::view()): colour k's contacts
+// are order[bounds[k]], ..., order[bounds[k + 1] - 1], with `bounds` in the
+// contacts' backend memory; `widest`: the most contacts of one colour.
+struct ColourView {
+  const std::uint32_t* order;
+  const std::uint32_t* bounds;
+  std::size_t colours, widest;
+};
+
+// f(contact) for the j-th contact of colour k, where colour k has one.
+template <class F>
+struct InColour {
+  F f;
+  ColourView colours;
+  std::size_t k;
+  GPUSOLVE_HD void operator()(std::size_t j) const {
+    const std::size_t first = colours.bounds[k];
+    if (first + j < colours.bounds[k + 1]) f(colours.order[first + j]);
+  }
+};
+
+// Queues f over the contacts of each colour, colour by colour, through a
+// program's executor e (persistent_loop.hpp), a barrier after each colour.
+GPUSOLVE_EXEC_CHECK_DISABLE
+template <class E, class F>
+GPUSOLVE_HD void sweep_colours(const E& e, const ColourView& colours, const F& f) {
+  for (std::size_t k = 0; k < colours.colours; ++k) {
+    e.each(colours.widest, InColour<F>{f, colours, k});
+    e.sync();
+  }
+}
+
 }  // namespace detail
 
 // Colours the contacts of `c` (over the bodies of `b`) so that no two contacts
@@ -155,6 +188,12 @@ class ContactColouring {
   }
 
   std::size_t colours() const { return offsets_.size() - 1; }
+  // The colours for a program's sweep (detail::sweep_colours).
+  detail::ColourView view() const {
+    std::size_t widest = 0;
+    for (std::size_t k = 0; k < colours(); ++k) widest = std::max(widest, offsets_[k + 1] - offsets_[k]);
+    return {order_.data(), bounds_.data(), colours(), widest};
+  }
   std::size_t offset(std::size_t k) const { return offsets_[k]; }
   const std::uint32_t* order() const { return order_.data(); }
   const std::uint32_t* colour() const { return colour_.data(); }

@@ -6,14 +6,13 @@
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
-#include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/contacts/contact_colouring.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
-#include "gpusolve/container/ensure_size.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
 #include "gpusolve/rbd/solvers/contact_solver_base.hpp"
 #include "gpusolve/rbd/solvers/convergence.hpp"
+#include "gpusolve/rbd/solvers/program_solve.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
 #include "gpusolve/rbd/solvers/solver.hpp"
 #include "gpusolve/rbd/settings/solver_settings.hpp"
@@ -23,30 +22,60 @@ namespace gpusolve::rbd {
 
 namespace detail {
 
-// One contact of the current colour, order[first + k]: its next velocity error
-// and its projected update, applied to its bodies at once (no other contact of
-// the colour touches them).
+// One contact's next velocity error and its projected update, applied to its
+// bodies at once (no other contact of its colour touches them).
 template <class Model, class BV, class CV, class T>
 struct GaussSeidelContact {
   CalcNextPhi<Model, BV, CV, T> phi;
   ResolveCollisions<Model, BV, CV, DirectSink<BV, T>, T> resolve;
-  const std::uint32_t* order;
-  std::size_t first;
-  GPUSOLVE_HD void operator()(std::size_t k) const {
-    const std::size_t i = order[first + k];
+  GPUSOLVE_HD void operator()(std::size_t i) const {
     T e[Model::rows];
     phi.error(i, e);
     resolve.update(i, e);
   }
 };
 
-// The velocity change of the impulses in c.x, colour by colour (warm start).
-template <class Model, class BV, class CV, class T>
-struct GaussSeidelApply {
-  ApplyImpulses<Model, BV, CV, DirectSink<BV, T>, T> apply;
-  const std::uint32_t* order;
-  std::size_t first;
-  GPUSOLVE_HD void operator()(std::size_t k) const { apply(order[first + k]); }
+// The start program of an attempt (persistent_loop.hpp): the velocities' copy
+// for a retry (`saving`), each contact's inverse block, then the velocity
+// change of the impulses it starts from, colour by colour (`from_x`: warm
+// start). A retry inside the persistent kernel (`retry`) starts cold.
+template <class Save, class Blocks, class Apply>
+struct GaussSeidelStart {
+  Save save;
+  Blocks blocks;
+  Apply apply;
+  ColourView colours;
+  bool saving, from_x;
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e, bool retry = false) const {
+    if (retry) restart_cold(e, save, blocks.c);
+    const bool first = !retry;
+    if (saving && first) e.each(save.b.size(), save);  // nothing in this phase writes a velocity
+    e.each(blocks.c.size(), blocks);
+    e.sync();
+    if (from_x && first) sweep_colours(e, colours, apply);
+  }
+};
+
+// One iteration as a program: a sweep over the colours (`measuring` in the
+// last iteration of a run, which records each contact's residual), then in
+// the last the residual check's reduction into *residual_out.
+template <class Contact, class Residual, class T>
+struct GaussSeidelIteration {
+  Contact plain, measuring;
+  ColourView colours;
+  Residual residual;  // over its width(): max(contacts, bodies)
+  T* residual_out;
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E>
+  GPUSOLVE_HD void operator()(const E& e, std::size_t, bool last) const {
+    sweep_colours(e, colours, last ? measuring : plain);
+    if (last) {
+      e.reduce(residual.width(), residual, T(0), MaxOp{}, residual_out);
+      e.sync();
+    }
+  }
 };
 
 }  // namespace detail
@@ -59,9 +88,12 @@ struct GaussSeidelApply {
 // GPU PGS solvers (graph colouring: Tonge, Benevolenski and Voroshilov 2012 use
 // it for their mass-splitting Jacobi; Harada 2011, "A parallel constraint solver
 // for a rigid body simulation"). It converges in fewer iterations than Jacobi and
-// needs no under-relaxation (omega 1 by default), at the price of one launch per
-// colour per iteration. Deterministic on both backends. Same contract as every
-// solver (solver.hpp).
+// needs no under-relaxation (omega 1 by default). Its colours are phases of one
+// persistent kernel with a barrier between them, as PhysX partitions its GPU
+// solver (up to SolverSettings::persistent_max_contacts, where the GPU can),
+// or one launch per colour (graphs with SolverSettings::graphs); checks and
+// retries as in JacobiSolver (ProgramSolve). Deterministic on both backends.
+// Same contract as every solver (solver.hpp).
 template <class Device, class T, class Model>
 class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
   using Base = ContactSolverBase<Device, T, Model>;
@@ -79,41 +111,38 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
     const BV b = bodies.view();
     const CV c = contacts.view();
     if (!this->prepare(c, s, stats)) return stats;
-    const Device dev{};
-    launch(dev, c.size(), InverseBlocks<Model, BV, CV, T>{b, c, nullptr, false}, stream);  // whole steps: a sweep
-    const std::size_t nc = c.size();
     colouring_.build(b, c, stream);
     stats.colours = colouring_.colours();
-    const std::uint32_t* order = colouring_.order();
+    const detail::ColourView colours = colouring_.view();
+    const std::size_t width = c.size() > b.size() ? c.size() : b.size();
+    run_.prepare(this->residual_terms(b, c), width, s, stream);
+    const T omega = omega_of<ColouredGaussSeidelSolver>(s);
     const detail::DirectSink<BV, T> sink{b};
-    // Runs f(colour's first position) over each colour's contacts, colour by colour.
-    auto sweep = [&](auto make) {
-      for (std::size_t k = 0; k < colouring_.colours(); ++k)
-        launch(dev, colouring_.offset(k + 1) - colouring_.offset(k), make(colouring_.offset(k)), stream);
+    // Each attempt's start: whole steps (a sweep sees the others' changes).
+    auto start = [&](bool first_attempt) {
+      return detail::GaussSeidelStart<detail::CopyVelocities<BV, T>, InverseBlocks<Model, BV, CV, T>,
+                                      ApplyImpulses<Model, BV, CV, detail::DirectSink<BV, T>, T>>{
+          this->start_.saver(b), {b, c, run_.scale(), false}, {b, c, sink}, colours,
+          first_attempt && s.max_retries > 0, from_x && first_attempt};
     };
-
-    auto attempt = [&](T omega, SolverStats<T>& st) {
-      if (from_x && st.retries == 0) {
-        sweep([&](std::size_t first) {
-          return detail::GaussSeidelApply<Model, BV, CV, T>{{b, c, sink}, order, first};
-        });
-      } else {
-        contacts.x.fill(T(0), stream);
-      }
-      ConvergenceMonitor<T> monitor(s, st);
-      const VectorD2View<T> rhs{};  // GaussSeidelContact keeps each error in registers: no store
-      const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs, T(1) / s.dt, s.correction};
-      for (std::size_t it = 1;; ++it) {
-        const bool measure = monitor.checks(it);
-        const ResolveCollisions<Model, BV, CV, detail::DirectSink<BV, T>, T> resolve{
-            b, c, rhs, sink, omega, measure, this->residual_.view()};
-        sweep([&](std::size_t first) {
-          return detail::GaussSeidelContact<Model, BV, CV, T>{phi, resolve, order, first};
-        });
-        if (measure && monitor.stop(it, this->residual(b, nc, stream))) break;
-      }
-    };
-    solve_relaxed(s, omega_of<ColouredGaussSeidelSolver>(s), b, this->start_, stats, attempt, stream);
+    const VectorD2View<T> rhs{};  // GaussSeidelContact keeps each error in registers: no store
+    using Contact = detail::GaussSeidelContact<Model, BV, CV, T>;
+    const Contact plain{{b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, sink, omega, false, this->residual_.view()}};
+    Contact measuring = plain;
+    measuring.resolve.measure = true;
+    const auto terms = this->residual_terms(b, c);
+    const detail::GaussSeidelIteration<Contact, decltype(terms), T> iteration{plain, measuring, colours, terms,
+                                                                              run_.residual_out()};
+    if (!from_x) contacts.x.fill(T(0), stream);
+    if (run_.persistent(contacts.expected_size(), s)) {
+      if (s.max_retries > 0) this->start_.reserve(b);
+      run_.run_persistent(start(true), iteration, detail::NoStart{}, s, omega, width, 0, false, nullptr, stream,
+                          stats);
+    } else {
+      run_.run_launched(
+          b, contacts.x, this->start_, s, omega, start,
+          iteration, [](const auto&) {}, stream, stats);
+    }
     return stats;
   }
 
@@ -121,6 +150,7 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
 
  private:
   ContactColouring<Device> colouring_;
+  detail::ProgramSolve<Device, T> run_;  // the persistent kernel or launches; checks and retries
 };
 
 // The method tag (solver.hpp).

@@ -5,14 +5,10 @@
 #include <cstddef>
 #include <type_traits>
 #include <utility>
-#include <vector>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
 #include "gpusolve/core/launch.hpp"
-#include "gpusolve/memory/buffer.hpp"
-#include "gpusolve/memory/cuda_host_allocator.hpp"
-#include "gpusolve/memory/standard_allocator.hpp"
 #include "gpusolve/rbd/solvers/accumulation.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
@@ -20,12 +16,11 @@
 #include "gpusolve/rbd/contacts/contacts.hpp"
 #include "gpusolve/rbd/solvers/convergence.hpp"
 #include "gpusolve/rbd/solvers/momentum.hpp"
-#include "gpusolve/rbd/execution/graph_replay.hpp"
+#include "gpusolve/rbd/solvers/program_solve.hpp"
 #include "gpusolve/rbd/execution/launch_exec.hpp"
 #include "gpusolve/rbd/execution/persistent_loop.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
 #include "gpusolve/container/ensure_size.hpp"
-#include "gpusolve/rbd/execution/stream_marks.hpp"
 #include "gpusolve/rbd/solvers/solver.hpp"
 #include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
@@ -124,15 +119,6 @@ struct RotatedJacobiIteration {
   }
 };
 
-// Contact i's impulses set to zero: a retry starts cold.
-template <class CV>
-struct ZeroImpulses {
-  CV c;
-  GPUSOLVE_HD void operator()(std::size_t i) const {
-    for (std::size_t r = 0; r < c.x.size_y(); ++r) c.x(i, r) = 0;
-  }
-};
-
 // The start program of an attempt: each contact's inverse block and the
 // velocity change of the impulses it starts from (`from_x`: warm start,
 // ApplyImpulses and their sums per body), then the momentum's start
@@ -155,13 +141,7 @@ struct AttemptStart {
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e, bool retry = false) const {
-    if (retry) {
-      Save back = save;
-      back.restore = true;
-      e.each(save.b.size(), back);
-      e.each(warm.c.size(), ZeroImpulses<decltype(warm.c)>{warm.c});
-      e.sync();
-    }
+    if (retry) restart_cold(e, save, warm.c);
     const bool first = !retry;
     if (preparing && first) prepare(e);                // ends with e.sync()
     if (saving && first) e.each(save.b.size(), save);  // nothing in this phase writes a velocity
@@ -242,14 +222,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
 
   // Fills in the verdict of the solve queued in `slot`: status, iterations,
   // residual history, retries, omega. The stream must have passed it.
-  void verdict(std::size_t slot, SolverStats<T>& stats) const {
-    const Record r = records_.data()[slot];
-    const std::vector<T> checks(histories_[slot].data(), histories_[slot].data() + r.checks);
-    record_checks(r.rule, checks, stats);
-    stats.retries = r.retries, stats.total_iterations = r.total_iterations;
-    stats.omega = omegas_[slot];
-    for (std::size_t k = 0; k < r.retries; ++k) stats.omega *= retry_factors_[slot];  // as solve_relaxed
-  }
+  void verdict(std::size_t slot, SolverStats<T>& stats) const { run_.verdict(slot, stats); }
 
   // Solves whose contacts' count is on the device (Contacts::count_on_device)
   // do nothing while *hold is not 0, a word of the backend's memory that an
@@ -270,7 +243,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
              std::size_t slot, bool deferred, SolverStats<T>& stats) {
     const BV b = bodies.view();
     CV c = contacts.view();
-    const bool persistent = contacts.expected_size() <= s.persistent_max_contacts && persistent_.available();
+    const bool persistent = run_.persistent(contacts.expected_size(), s);
     if (!count_on_host(c, persistent, stream)) return false;  // held
     if (!this->prepare(c, s, stats)) return false;
     const std::size_t width = grid_width(contacts, b, c);
@@ -311,19 +284,10 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   // state, the residual's slot, the reductions' storage, the blocks' scale.
   void prepare_iterations(const BV& b, const CV& c, const SolverSettings<T>& s, std::size_t width, stream_t stream) {
     momentum_.begin(b, c);
-    if (residual_out_.size_x() == 0) residual_out_.resize(1);
-    if (s.graphs) {  // a capture may not grow the reductions' buffers (the first node would keep the old one)
-      const auto terms = this->residual_terms(b, c);
-      algorithms_.reserve_reduce(width, terms, T(0), detail::MaxOp{}, residual_out_.data());
-      algorithms_.reserve_reduce(width, terms, T(0), detail::PlusOp{}, residual_out_.data());
-    }
-    if (scale_.size_x() == 0) {
-      scale_.resize(1);
-      scale_.fill(T(1), stream);
-    }
+    run_.prepare(this->residual_terms(b, c), width, s, stream);
   }
 
-  detail::LaunchExec<Device, T> launched(stream_t stream) { return {stream, &algorithms_}; }
+  detail::LaunchExec<Device, T> launched(stream_t stream) { return run_.launched(stream); }
 
   // The start of the first attempt (in the kernel, the accumulator's
   // preparation first; the copy of the velocities for a retry; the warm start)
@@ -335,7 +299,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
                                 ApplyImpulses<Model, BV, CV, Sink, T>, decltype(acc_.program(b)),
                                 decltype(momentum_.start(b, c))>{prepared,
                                                                  this->start_.saver(b),
-                                                                 {b, c, scale_.data()},
+                                                                 {b, c, run_.scale()},
                                                                  {b, c, acc_.sink()},
                                                                  acc_.program(b),
                                                                  momentum_.start(b, c),
@@ -353,7 +317,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     const VectorD2View<T> rhs{};  // JacobiContact keeps each error in registers: no store
     const auto residual = this->residual_.view();
     const auto terms = this->residual_terms(b, c);
-    T* const residual_out = residual_out_.data();
+    T* const residual_out = run_.residual_out();
     // The iteration's contact functors, plain and measuring, for a sink and an iterate.
     auto contact_pair = [&](const auto& sink, const auto& look) {
       using Contact = JacobiContact<Model, BV, CV, std::decay_t<decltype(sink)>, T, std::decay_t<decltype(look)>>;
@@ -383,29 +347,15 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
                         const Iteration& iteration, bool from_x, std::size_t width, std::size_t slot, bool deferred,
                         stream_t stream, SolverStats<T>& stats) {
     if (s.max_retries > 0) this->start_.reserve(b);
-    if (!scale_is_one_) scale_.fill(T(1), stream);
-    scale_is_one_ = true;  // the kernel leaves it 1
     const auto between = [&] {
       if constexpr (std::is_same_v<MomentumTag, NoMomentum>)
         return detail::NoStart{};
       else
         return detail::BetweenRuns<decltype(momentum_.program())>{momentum_.program()};
     }();
-    const ConvergenceRule<T> rule(s);
-    if (records_.size() == 0) records_ = HostBuffer<Record>(2);
-    if (histories_[slot].size() < rule.max_checks()) histories_[slot] = HostBuffer<T>(rule.max_checks());
-    omegas_[slot] = omega_of<JacobiSolver>(s), retry_factors_[slot] = s.retry_omega_factor;
-    persistent_.set_clusters(s.persistent_clusters);
-    persistent_.run_checked(attempt_start(b, c, s, prepared, true, true, from_x), iteration, between, rule,
-                            detail::RetryRule<T>{s.retry_omega_factor, s.max_retries, scale_.data()},
-                            residual_out_.data(), records_.data() + slot, histories_[slot].data(), width, stream,
-                            c.count.live != nullptr ? hold_ : nullptr);
-    if (deferred) return true;
-    done_.mark(0, stream);
-    done_.wait(0);
-    verdict(slot, stats);
-    report_divergence(s, stats);
-    return false;
+    return run_.run_persistent(attempt_start(b, c, s, prepared, true, true, from_x), iteration, between, s,
+                               omega_of<JacobiSolver>(s), width, slot, deferred,
+                               c.count.live != nullptr ? hold_ : nullptr, stream, stats);
   }
 
   // The solve as launches: each attempt's start, then runs of iterations up to
@@ -415,52 +365,16 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   void solve_launched(const BV& b, const CV& c, ContactStore& contacts, const SolverSettings<T>& s,
                       const Prepared& prepared, const Iteration& iteration, bool from_x, stream_t stream,
                       SolverStats<T>& stats) {
-    const T omega = omega_of<JacobiSolver>(s);
-    auto attempt = [&](T attempt_omega, SolverStats<T>& st) {
-      const bool first_attempt = st.retries == 0;
-      if (!first_attempt) contacts.x.fill(T(0), stream);
-      scale_.fill(attempt_omega / omega, stream);
-      scale_is_one_ = attempt_omega == omega;
-      const auto start = attempt_start(b, c, s, prepared, false, first_attempt, from_x);
-      // Iterations `first` ... `last`, the last one measuring the residual.
-      auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
-        const detail::LaunchExec<Device, T> e{q, &algorithms_};
-        for (std::size_t it = first; it <= last; ++it) iteration(e, it - first + 1, it == last);
-      };
-      ConvergenceMonitor<T> monitor(s, st);
-      for (std::size_t first = 1;;) {
-        const std::size_t last = monitor.next_check(first);
-        if (first == 1) start(launched(stream));  // a graph's kernels stay the same from run to run without the start's
-        if (s.graphs)
-          graph_.run([&](stream_t q) { iterations(first, last, q); }, stream);
-        else
-          iterations(first, last, stream);
-        if (monitor.stop(last, detail::read_back<Device>(residual_out_.data(), 0, stream))) break;
-        momentum_.after_iteration(launched(stream));
-        first = last + 1;
-      }
-    };
-    solve_relaxed(s, omega, b, this->start_, stats, attempt, stream, true);
+    run_.run_launched(
+        b, contacts.x, this->start_, s, omega_of<JacobiSolver>(s),
+        [&](bool first_attempt) { return attempt_start(b, c, s, prepared, false, first_attempt, from_x); }, iteration,
+        [&](const auto& e) { momentum_.after_iteration(e); }, stream, stats);
   }
 
   Accumulator<Strategy, Device, T> acc_;
   Momentum<MomentumTag, Device, T> momentum_;
-  detail::DeviceAlgorithms<Device> algorithms_;  // the programs' reductions
-  VectorD1<T, device_is<Device>> residual_out_;  // the residual check's maximum
-  detail::GraphReplay<Device> graph_;           // SolverSettings::graphs
-  detail::PersistentLoop<Device, T> persistent_;  // SolverSettings::persistent_max_contacts
-  // What the persistent kernel leaves for the host (pinned on the GPU).
-  template <class E>
-  using HostBuffer = memory::Buffer<
-      E, std::conditional_t<std::is_same_v<Device, device::gpu>, memory::CUDAHostAllocator, memory::StandardAllocator>>;
-  using Record = detail::CheckedRun<ConvergenceRule<T>>;
-  HostBuffer<Record> records_;  // per slot (solve_queued)
-  HostBuffer<T> histories_[2];  // per slot: the residual of each check of the last attempt
-  T omegas_[2] = {}, retry_factors_[2] = {};
-  VectorD1<T, device_is<Device>> scale_;  // the inverse blocks' factor: retry_omega_factor^retries
-  bool scale_is_one_ = true;               // *scale_ between solves, as the host last queued it
-  const std::uint32_t* hold_ = nullptr;    // hold_while
-  detail::StreamMarks<Device, 1> done_;
+  detail::ProgramSolve<Device, T> run_;  // the persistent kernel or launches; checks and retries
+  const std::uint32_t* hold_ = nullptr;  // hold_while
 };
 
 // The method tag of projected Jacobi (a model of the Solver concept, solver.hpp).
