@@ -3,8 +3,8 @@
 // penetration and the LCP residual it bought, and whether each step converged.
 //
 // Run: gpusolve_bench_atlas --scene pile|cubes|mixed|clumps|unions|column|pyramid|stack|field|slabs|hopper [--n 10000,100000] [--ratios 1,100,1000]
-//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg] [--budgets default,it10,it20,s4x5,tol0.02,check10,launched]
-//        [--margins 0.1]
+//        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg]
+//        [--budgets default,it10,it20,s4x5,tol0.02,check10,launched,unanchored] [--margins 0.1]
 //        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, docs/piles.md), N spheres dropped into
@@ -39,6 +39,10 @@
 // threads): its accuracy columns are the method's, its times only the host's.
 // --phases: World::set_phase_timing on; the medians of detection, solve and
 // integration over the last third go to the ms_detection.. columns (0 without).
+// --budgets: the defaults changed by one thing: itK, K iterations; tolX, the
+// tolerance X; sSxK, S substeps of K; checkK, a check every K; launched, the
+// solve as launches instead of the persistent kernel; unanchored, no friction
+// anchors.
 // Measured, over the last third of the steps: time per whole step (detection,
 // solve, integration and World's statistics, what a user's loop pays) with CUDA
 // events around World::step, mean and median; mean iterations; the median final
@@ -143,9 +147,11 @@ SolverSettings<T> settings_for(const Run& r) {
     s.check_every = std::stoul(r.budget.substr(5));
   } else if (r.budget == "launched") {
     s.persistent_max_contacts = 0;  // the defaults, as launches instead of the persistent kernel
+  } else if (r.budget == "unanchored") {
+    s.friction_anchors = false;  // the defaults without friction anchors
   } else if (r.budget != "default") {
     throw InvalidArgumentError("atlas: unknown budget '" + r.budget +
-                               "' (default, itK, sSxK, tolX, checkK or launched)");
+                               "' (default, itK, sSxK, tolX, checkK, launched or unanchored)");
   }
   return s;
 }

@@ -1,11 +1,13 @@
 // Boxes, capsules and compounds in a World on the CPU backend, against closed forms:
 // resting, sticking and sliding on an incline, tipping over an edge, rolling.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
 
 #include "catch_compat.hpp"
 #include "test_rbd_scenes.hpp"
+#include "../../bench/shared_pile.hpp"
 
 using namespace rbd_test;
 
@@ -305,8 +307,10 @@ TEST_CASE("a union of two boxes is the box they tile: mass, inertia and sliding 
 TEST_CASE("a stack of unions that tile slabs stands like the slabs, four points per pair", "[rbd_physics][shapes][compound]") {
   // Each union: 2 x 2 boxes of 1 x 1 x 0.5 tiling a 2 x 2 x 0.5 slab. Its 4
   // parts meet the floor with 16 points and the union below with 16 or more;
-  // merged by normal, every body pair keeps 4 upright points, as the slabs do
-  // (beside the sideways ones where parts of two layers meet edge to edge).
+  // merged by normal, every body pair keeps 4 upright points, as the slabs do,
+  // and a fifth where its deepest point is not a corner (MergedManifolds
+  // keeps it), beside the sideways ones where parts of two layers meet edge
+  // to edge.
   std::vector<Part<double>> tiles;
   for (double x : {-0.5, 0.5})
     for (double y : {-0.5, 0.5}) tiles.push_back({box, {0.5, 0.5, 0.25, 0}, {x, y, 0}, {1, 0, 0, 0}});
@@ -326,7 +330,8 @@ TEST_CASE("a stack of unions that tile slabs stands like the slabs, four points 
       auto& c = w.contacts();
       std::size_t upright = 0;
       for (std::size_t k = 0; k < n; ++k) upright += std::fabs(c.n(k, 2)) > 0.999;
-      REQUIRE(upright == 16);
+      REQUIRE(upright >= 16);
+      REQUIRE(upright <= (as_unions ? 20 : 16));
       REQUIRE(n <= 16 * MergedManifolds<double>::max_sets);
     }
     w.syncHost();
@@ -397,4 +402,64 @@ TEST_CASE("a union holds its parts together where the same parts as separate bod
   parts_world.syncHost();
   for (int k = 0; k < 3; ++k) CHECK(std::fabs(joined[1].pos[k] - start[k]) < 1e-4);
   CHECK(apart[2].pos[2] < 0.5);  // the arm fell from 0.9 to the floor
+}
+
+namespace {
+
+// The largest move of a box of the 12-layer pyramid (half extent 0.5) between
+// 2 s and 4 s at the defaults, over its half extent: the creep, after the
+// pyramid has settled.
+template <class Method>
+double pyramid_creep(bool anchors) {
+  BodySet<float> set = gpusolve::bench::box_pyramid<float>(12);
+  SolverSettings<float> s;
+  s.friction_anchors = anchors;
+  World<device::cpu, float, ConeFriction, Method> w(set, s);
+  for (int i = 0; i < 800; ++i) w.step();
+  w.syncHost();
+  const BodySet<float> settled = set;
+  for (int i = 0; i < 800; ++i) w.step();
+  w.syncHost();
+  double most = 0;
+  for (std::size_t i = 1; i < set.size(); ++i) {
+    const auto& p = set[i].pos;
+    const auto& q = settled[i].pos;
+    most = std::max(most, double(std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2])));
+  }
+  return most / 0.5;
+}
+
+}  // namespace
+
+// Without anchors, the friction that a solve stopped at the defaults' budget
+// leaves unconverged adds a small slip at every sticking point each step, and
+// the pyramid spreads steadily (6.4e-4 of a half extent in 2 s under APGD;
+// with anchors 0.8e-4, Gauss-Seidel 0.9e-4). Bound: issue 35's "no box moves
+// more than 0.1% of its size in 10 s", for 2 s.
+TEST_CASE("friction anchors: a settled pyramid of boxes does not creep", "[rbd_physics][shapes][anchors]") {
+  const double apgd = pyramid_creep<AcceleratedJacobi<Gather>>(true);
+  const double gauss_seidel = pyramid_creep<ColouredGaussSeidel>(true);
+  CHECK(apgd < 2e-4);
+  CHECK(gauss_seidel < 2e-4);
+  CHECK(pyramid_creep<AcceleratedJacobi<Gather>>(false) > 5 * apgd);  // what the anchors stop
+}
+
+TEST_CASE("friction anchors: only scenes with boxes, capsules or compounds, with the warm start on, carry them",
+          "[rbd_physics][shapes][anchors]") {
+  const auto anchored = [](BodySet<double> set, auto tune) {
+    SolverSettings<double> s;
+    tune(s);
+    World<device::cpu, double> w(set, s);
+    w.step();
+    return w.contacts().anchored();
+  };
+  BodySet<double> spheres, boxes;
+  for (auto* set : {&spheres, &boxes}) set->add_plane({0, 0, 1}, 0);
+  spheres.add_sphere({0, 0, 0.5}, 0.5, 1.0);
+  boxes.add_box({0, 0, 0.5}, {0.5, 0.5, 0.5}, 1.0);
+  const auto defaults = [](SolverSettings<double>&) {};
+  CHECK(anchored(boxes, defaults));
+  CHECK_FALSE(anchored(spheres, defaults));
+  CHECK_FALSE(anchored(boxes, [](SolverSettings<double>& s) { s.friction_anchors = false; }));
+  CHECK_FALSE(anchored(boxes, [](SolverSettings<double>& s) { s.warm_start = 0; }));
 }

@@ -64,8 +64,9 @@ struct StepEnd {
 //
 // A step is five stages, queued in this order (queue_step):
 //   detect       contacts from the bodies' bounds and shapes (collision/)
-//   apply forces v + dt M^-1 f_ext, the velocity the contact solve sees (thesis Eq. 6)
 //   warm start   each persisting contact starts from a share of its last impulse
+//                (and keeps its friction anchor, from the velocities the last step ended with)
+//   apply forces v + dt M^-1 f_ext, the velocity the contact solve sees (thesis Eq. 6)
 //   solve        the Solver concept (solvers/): constrained velocities and impulses
 //   end of step  integrate, remember the impulses, write the figures: one pass
 template <class Device, class T = float, class Model = ConeFriction, class Method = AcceleratedJacobi<Gather>,
@@ -165,8 +166,8 @@ class World {
         detect(hold);
       }
       mark(slot, detected);
+      const bool warm = warm_start(hold);  // before the forces: friction anchors read the last step's velocities
       apply_forces(hold);
-      const bool warm = warm_start(hold);
       {
         const memory::AllocationLabel label("the solver");
         pending = solve(warm, hold, k, stats.solver);
@@ -203,8 +204,16 @@ class World {
     }
   }
 
+  // Friction anchors (ContactSettings::friction_anchors) where the scene holds a
+  // kind other than spheres and planes; the warm start keeps them.
+  bool anchoring() {
+    const bool kinds = (manager_.device().shapes & ~spheres_and_planes) != 0;
+    return settings_.friction_anchors && settings_.warm_start > 0 && kinds;
+  }
+
   void detect(std::uint32_t* hold) {
     const SolverSettings<T>& s = settings_;
+    contacts_.keep_anchors(anchoring());
     detection_.set_graphs(s.detection_graph);
     const ContactDefaults<T> defaults({s.friction, s.restitution, s.rolling, s.spinning}, s.bounce_threshold, s.dt);
     if (hold != nullptr)
@@ -227,7 +236,7 @@ class World {
     const bool warm = settings_.warm_start > 0;
     const auto cv = contacts_.view();
     if (warm && cv.bound() != 0) {
-      const auto carrier = warm_.carrier(cv, settings_.warm_start);
+      const auto carrier = warm_.carrier(manager_.device().view(), cv, settings_.warm_start, settings_.dt);
       launch(Device{}, cv.bound(), detail::UnlessHeld<decltype(carrier)>{carrier, hold}, stream_);
     }
     return warm;

@@ -53,6 +53,7 @@ struct Contacts {
   VecD1 bounce;            // separation speed restitution asks for (0: none), materials.hpp
   VecD2 dinv;              // n x rows: the step of each row (the diagonal of D, InverseBlocks)
   VecD2 x;                 // n x rows: impulse (normal, t, o)
+  VecD2 slip;              // n x 2: friction anchors (keep_anchors): a sticking point's slip along t and o
 
   Contacts() = default;
   explicit Contacts(std::size_t n) { resize(n); }
@@ -83,9 +84,22 @@ struct Contacts {
         roll.resize(cap);
       }
       capacity_ = cap;
+      if (anchored_) allocate_anchors();
     }
     n_ = count;
   }
+
+  // Whether the contacts carry friction anchors (models with friction only;
+  // World turns them on per ContactSettings::friction_anchors). Their storage
+  // is allocated only while they are on.
+  void keep_anchors(bool on) {
+    anchored_ = on && Model::friction;
+    if (anchored_ && slip.size_x() < capacity_) {
+      const memory::AllocationLabel label("contacts");
+      allocate_anchors();
+    }
+  }
+  bool anchored() const { return anchored_; }
   std::size_t size() const { return n_; }
   std::size_t capacity() const { return capacity_; }
 
@@ -115,7 +129,8 @@ struct Contacts {
     D1View<std::uint32_t> a, b, feature;
     VecD2View n, t, o, ra, rb;
     VecD1View phi0, mu, spin, roll, bounce;
-    VecD2View dinv, x;
+    VecD2View dinv, x, slip;
+    bool anchored;  // slip holds the friction anchors (keep_anchors)
 
     GPUSOLVE_HD std::size_t size() const {
 #if !GPUSOLVE_DEVICE_CODE
@@ -200,10 +215,15 @@ struct Contacts {
                 logical(roll.view(), n_),
                 logical(bounce.view(), n_),
                 logical(dinv.view(), n_),
-                logical(x.view(), n_)};
+                logical(x.view(), n_),
+                logical(slip.view(), n_),
+                anchored_};
   }
 
  private:
+  void allocate_anchors() { slip.resize(capacity_, 2); }
+
+  bool anchored_ = false;
   std::size_t n_ = 0;
   std::size_t capacity_ = 0;
   const std::uint32_t* live_ = nullptr;

@@ -1,7 +1,7 @@
 // ContactSettings: how contacts are generated and what they carry: the margin
 // within which a gap becomes a contact, the share of a penetration corrected
 // per step, the default material's friction, restitution and rolling and
-// spinning resistance.
+// spinning resistance, friction anchors.
 #pragma once
 
 #include <cmath>
@@ -29,6 +29,13 @@ struct ContactSettings {
   // this (m/s): slower impacts, as of a body coming to rest, do not (Box2D v3's
   // restitution threshold, 1 m/s).
   T bounce_threshold = T(1);
+  // Static friction holds a sticking contact's two points together: the
+  // friction rows also correct their slip, by `correction` per step
+  // (solvers/friction_anchors.hpp), so that a standing structure does not
+  // creep. Applied where the scene holds boxes, capsules or compounds and the
+  // warm start is on (it keeps the anchors); scenes of spheres and planes do
+  // not pay for it.
+  bool friction_anchors = true;
 
   // Throws InvalidArgumentError naming the first offending field.
   void validate() const {

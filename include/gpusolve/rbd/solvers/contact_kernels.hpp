@@ -256,7 +256,9 @@ struct InverseBlocks {
 // separation speed of |phi0|/dt, which throws bodies out of a pile. A contact
 // that bounces (restitution: c.bounce > 0, set by detection for an impact
 // within the step) asks for exactly that separation speed instead, with no
-// position correction on top, which would add energy to the bounce.
+// position correction on top, which would add energy to the bounce. Where the
+// contacts carry friction anchors, the friction rows likewise ask that
+// `correction` of a sticking point's slip be undone (friction_anchors.hpp).
 template <class Model, class BV, class CV, class T>
 struct CalcNextPhi {
   BV b;
@@ -283,6 +285,11 @@ struct CalcNextPhi {
     const T phi0 = c.phi0[i], bounce = c.bounce[i], approach = e[0];
     e[0] += (phi0 < T(0) ? correction * phi0 : phi0) * inv_dt;  // as without restitution, to the bit
     if (bounce > T(0)) e[0] = approach - bounce;
+    if constexpr (Model::linear_rows == 3)
+      if (c.anchored) {  // the sticking points' slip, corrected by the same share (friction_anchors.hpp)
+        e[1] += correction * c.slip(i, 0) * inv_dt;
+        e[2] += correction * c.slip(i, 1) * inv_dt;
+      }
   }
 };
 

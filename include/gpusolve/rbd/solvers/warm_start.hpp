@@ -15,6 +15,7 @@
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/collision/broad_phase.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
+#include "gpusolve/rbd/solvers/friction_anchors.hpp"
 #include "gpusolve/rbd/contacts/extent.hpp"
 #include "gpusolve/container/ensure_size.hpp"
 
@@ -27,7 +28,8 @@ namespace detail {
 // angular rows): the tangents are rebuilt from each step's
 // normal (Contacts::View::set_tangents) and may turn, even swap axes, from one
 // step to the next, so the impulse is re-expressed in the new frame rather than
-// copied row by row. Frictionless: the normal impulse itself.
+// copied row by row. Frictionless: the normal impulse itself. With friction
+// anchors, after the impulse the anchors a sticking contact keeps.
 // Index 0 also records the contacts' count, which the next step's carry
 // reads where it runs (the count may be known only to the device).
 template <class Model, class CV, class T>
@@ -53,6 +55,7 @@ struct RememberImpulse {
         const math::Vector3<T> m = f.angular(x);
         for (std::size_t k = 0; k < 3; ++k) p(i, 3 + k) = m[k];
       }
+      if (c.anchored) remember_anchor<Model>(c, i, x, p, Model::rows);
     } else {
       p(i, 0) = c.x(i, 0);
     }
@@ -82,17 +85,20 @@ GPUSOLVE_HD inline std::size_t lower_bound_near(const std::uint64_t* keys, std::
 // x of contact i: factor times the remembered impulse of the same point (body
 // pair and feature id) in the contact's new frame, projected onto the
 // admissible set (the normal may have turned); zero for a point that was not
-// in contact. Both steps' contacts are sorted by (a, b) and most pairs
+// in contact. Where the contacts carry friction anchors, also its anchors
+// (those it kept, or new ones) and their slip. Both steps' contacts are sorted by (a, b) and most pairs
 // persist, so the pair is searched for from the contact's index scaled to the
 // previous list's length, then its few points for the feature.
-template <class Model, class CV, class T>
+template <class Model, class BV, class CV, class T>
 struct CarryImpulse {
+  BV b;  // the bodies' poses: friction anchors' slip
   CV c;
   const std::uint64_t* keys;  // previous step's pair keys, sorted
   const std::uint32_t* features;
   Extent previous;            // their number
   VectorD2View<T> p;
   T factor;
+  T dt;  // the step: friction anchors' slip
   GPUSOLVE_HD void operator()(std::size_t i) const {
     constexpr std::size_t R = Model::rows;
     if (i >= c.size()) return;
@@ -102,7 +108,15 @@ struct CarryImpulse {
     const std::uint32_t feature = c.feature[i];
     while (j < count && keys[j] == key && features[j] != feature) ++j;
     T x[R] = {};
-    if (j < count && keys[j] == key) {
+    const bool found = j < count && keys[j] == key;
+    if constexpr (Model::linear_rows == 3)
+      if (c.anchored) {
+        T kept[anchor_values];
+        const bool anchored = found && p.size_y() == R + anchor_values;  // the last step kept anchors
+        for (std::size_t k = 0; k < anchor_values && anchored; ++k) kept[k] = p(j, R + k);
+        carry_anchor(b, c, i, anchored ? kept : nullptr, dt);
+      }
+    if (found) {
       if constexpr (Model::linear_rows == 3) {
         const Frame<T, Model, CV> f(c, i);
         const math::Vector3<T> w(p(j, 0), p(j, 1), p(j, 2));
@@ -130,14 +144,16 @@ struct CarryImpulse {
 template <class Device, class T, class Model>
 class WarmStart {
  public:
-  template <class CV>
-  void carry(const CV& c, T factor, stream_t stream = stream_t{}) {
-    if (c.bound() != 0) launch(Device{}, c.bound(), carrier(c, factor), stream);
+  // With friction anchors (c.anchored) the bodies' velocities must still be
+  // those the last step ended with, and dt its length.
+  template <class BV, class CV>
+  void carry(const BV& b, const CV& c, T factor, T dt, stream_t stream = stream_t{}) {
+    if (c.bound() != 0) launch(Device{}, c.bound(), carrier(b, c, factor, dt), stream);
   }
   // carry() as a functor over the contacts' bound, for a caller that launches it.
-  template <class CV>
-  detail::CarryImpulse<Model, CV, T> carrier(const CV& c, T factor) {
-    return {c, keys_.data(), features_.data(), {count_, count_ != 0 ? live_.data() : nullptr}, p_.view(), factor};
+  template <class BV, class CV>
+  detail::CarryImpulse<Model, BV, CV, T> carrier(const BV& b, const CV& c, T factor, T dt) {
+    return {b, c, keys_.data(), features_.data(), {count_, count_ != 0 ? live_.data() : nullptr}, p_.view(), factor, dt};
   }
   template <class CV>
   void remember(const CV& c, stream_t stream = stream_t{}) {
@@ -155,7 +171,8 @@ class WarmStart {
     if (count_ != 0) {
       gpusolve::detail::ensure_size_keeping(keys_, count_, 1, stream);
       gpusolve::detail::ensure_size_keeping(features_, count_, 1, stream);
-      gpusolve::detail::ensure_size_keeping(p_, count_, Model::rows, stream);
+      const std::size_t values = Model::rows + (c.anchored ? detail::anchor_values : 0);
+      gpusolve::detail::ensure_size_keeping(p_, count_, values, stream);
       gpusolve::detail::ensure_size(live_, 1);
     }
     return {c, keys_.data(), features_.data(), p_.view(), live_.data()};
