@@ -82,7 +82,7 @@ def plot_pile(rows, out):
     fig.savefig(out, dpi=110)
 
 
-VERDICT_COLOUR = {"converged": "#6cc26c", "capped": "#f0c040", "diverged": "#e05050"}
+VERDICT_COLOUR = {"converged": "#6cc26c", "capped": "#f0c040", "diverged": "#e05050", "fell": "#a070d0"}
 
 
 def plot_warm(rows, out):
