@@ -139,9 +139,7 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
       run_.run_persistent(start(true), iteration, detail::NoStart{}, s, omega, width, 0, false, nullptr, stream,
                           stats);
     } else {
-      run_.run_launched(
-          b, contacts.x, this->start_, s, omega, start,
-          iteration, [](const auto&) {}, stream, stats);
+      run_.run_launched(b, contacts.x, this->start_, s, omega, start, iteration, [](const auto&) {}, stream, stats);
     }
     return stats;
   }

@@ -5,8 +5,7 @@
 // corrects a penetration (CalcNextPhi). A friction solve stopped short of
 // convergence leaves a small tangential velocity at every sticking point,
 // which without anchors adds up from step to step: a standing structure
-// creeps (issue 35: the 20-layer box pyramid moved 0.38% of a box in 10 s
-// under APGD at the defaults on the CPU backend). The displacement is summed
+// creeps (measured in docs/shapes.md). The displacement is summed
 // from the relative velocity at the contact point, so that a body rolling
 // without slipping moves no anchor. Bullet keeps friction anchors for the
 // same reason (btCollisionObject::CF_HAS_FRICTION_ANCHOR).

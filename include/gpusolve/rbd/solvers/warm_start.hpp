@@ -29,7 +29,7 @@ namespace detail {
 // normal (Contacts::View::set_tangents) and may turn, even swap axes, from one
 // step to the next, so the impulse is re-expressed in the new frame rather than
 // copied row by row. Frictionless: the normal impulse itself. With friction
-// anchors, after the impulse the anchors a sticking contact keeps.
+// anchors, after it the slip a sticking contact keeps (friction_anchors.hpp).
 // Index 0 also records the contacts' count, which the next step's carry
 // reads where it runs (the count may be known only to the device).
 template <class Model, class CV, class T>
@@ -85,20 +85,20 @@ GPUSOLVE_HD inline std::size_t lower_bound_near(const std::uint64_t* keys, std::
 // x of contact i: factor times the remembered impulse of the same point (body
 // pair and feature id) in the contact's new frame, projected onto the
 // admissible set (the normal may have turned); zero for a point that was not
-// in contact. Where the contacts carry friction anchors, also its anchors
-// (those it kept, or new ones) and their slip. Both steps' contacts are sorted by (a, b) and most pairs
-// persist, so the pair is searched for from the contact's index scaled to the
-// previous list's length, then its few points for the feature.
+// in contact; where the contacts carry friction anchors, also its slip
+// (friction_anchors.hpp). Both steps' contacts are sorted by (a, b) and most
+// pairs persist, so the pair is searched for from the contact's index scaled
+// to the previous list's length, then its few points for the feature.
 template <class Model, class BV, class CV, class T>
 struct CarryImpulse {
-  BV b;  // the bodies' poses: friction anchors' slip
+  BV b;  // the bodies' velocities: friction anchors
   CV c;
   const std::uint64_t* keys;  // previous step's pair keys, sorted
   const std::uint32_t* features;
   Extent previous;            // their number
   VectorD2View<T> p;
   T factor;
-  T dt;  // the step: friction anchors' slip
+  T dt;  // the step's length: friction anchors
   GPUSOLVE_HD void operator()(std::size_t i) const {
     constexpr std::size_t R = Model::rows;
     if (i >= c.size()) return;
