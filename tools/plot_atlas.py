@@ -13,7 +13,8 @@
 
   scenes:    any scenes (the shape piles, the pyramid and the stack): per
              scene, each method and budget's time per step against its
-             largest penetration, or for the towers the largest move (drift).
+             largest penetration, or for the towers the largest move after
+             settling (creep; drift where a CSV has no creep).
 
 Usage: python3 tools/plot_atlas.py pile CSV [CSV ...] -o pile.png
        python3 tools/plot_atlas.py scenes CSV [CSV ...] -o shapes.png
@@ -153,14 +154,19 @@ def plot_stability(rows, out):
 
 def plot_scenes(rows, out):
     """One panel per scene: each method and budget a point of time per step
-    against the largest penetration (log), and, for the towers, the drift."""
+    against the largest penetration (log), and, for the towers, the creep
+    (the largest move after the first quarter of the steps; the drift from
+    the start in CSVs written before the atlas measured the creep)."""
     plt = pyplot()
     scenes = sorted({r["scene"] for r in rows})
     fig, axes = plt.subplots(1, len(scenes), figsize=(4.5 * len(scenes), 4), squeeze=False)
     for ax, scene in zip(axes[0], scenes):
         tower = scene in ("pyramid", "stack", "field", "slabs")
+        creep = all(r.get("creep") for r in rows if r["scene"] == scene)
         for r in (r for r in rows if r["scene"] == scene):
-            y = float(r["drift"]) if tower else float(r["max_penetration"])
+            y = float(r["max_penetration"])
+            if tower:
+                y = max(float(r["creep"] if creep else r["drift"]), 1e-6)  # a point on the log axis
             ax.scatter(float(r["ms_per_step_median"]), 100 * y)
             ax.annotate(f'{r["method"]} {budget_label(r["budget"])}', (float(r["ms_per_step_median"]), 100 * y),
                         fontsize=7)
@@ -168,7 +174,8 @@ def plot_scenes(rows, out):
             ax.axhline(1.0, color="grey", lw=0.8, ls="--")
         ax.set_yscale("log")
         ax.set_xlabel("ms per step (median)")
-        ax.set_ylabel("largest move / box size, %" if tower else "largest penetration / feature size, %")
+        moved = "largest move after settling" if creep else "largest move"
+        ax.set_ylabel(f"{moved} / box size, %" if tower else "largest penetration / feature size, %")
         ax.set_title(f'{scene}, n = {rows[0]["n"] if len(scenes) == 1 else next(r["n"] for r in rows if r["scene"] == scene)}')
     fig.suptitle(rows[0].get("gpu", ""), fontsize=8)
     fig.tight_layout()
