@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "catch_compat.hpp"
@@ -433,14 +434,21 @@ double pyramid_creep(bool anchors) {
 
 // Without anchors, the friction that a solve stopped at the defaults' budget
 // leaves unconverged adds a small slip at every sticking point each step, and
-// the pyramid spreads steadily (6.4e-4 of a half extent in 2 s under APGD;
-// with anchors 0.8e-4, Gauss-Seidel 0.9e-4). Bound: issue 35's "no box moves
-// more than 0.1% of its size in 10 s", for 2 s.
-TEST_CASE("friction anchors: a settled pyramid of boxes does not creep", "[rbd_physics][shapes][anchors]") {
-  const double apgd = pyramid_creep<AcceleratedJacobi<Gather>>(true);
-  const double gauss_seidel = pyramid_creep<ColouredGaussSeidel>(true);
-  CHECK(apgd < 2e-4);
-  CHECK(gauss_seidel < 2e-4);
+// the pyramid spreads steadily (in 2 s: 6.4e-4 of a half extent under APGD,
+// 4.0e-4 under AcceleratedCG, 2.4e-4 under Jacobi; with anchors 0.4e-4 to
+// 0.9e-4 for every method). Bound: issue 35's "no box moves more than 0.1% of
+// its size in 10 s", for 2 s.
+TEST_CASE("friction anchors: a settled pyramid of boxes does not creep, with every method",
+          "[rbd_physics][shapes][anchors]") {
+  double apgd = 0;
+  for_every_method([&](auto method) {
+    using Method = decltype(method);
+    INFO(Method::name);
+    const double creep = pyramid_creep<Method>(true);
+    CHECK(creep < 2e-4);
+    if constexpr (std::is_same_v<Method, AcceleratedJacobi<Gather>>) apgd = creep;
+  });
+  REQUIRE(apgd > 0);
   CHECK(pyramid_creep<AcceleratedJacobi<Gather>>(false) > 5 * apgd);  // what the anchors stop
 }
 
