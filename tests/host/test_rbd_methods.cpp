@@ -51,6 +51,16 @@ TEST_CASE("contact colouring: no colour holds two contacts of one moving body, a
   again.build(b, c.view());
   REQUIRE(again.colours() == col.colours());
   for (std::size_t p = 0; p < c.size(); ++p) REQUIRE(again.order()[p] == col.order()[p]);
+  // Built again, it runs the rounds the last build needed and a quarter more
+  // in one batch, and colours alike.
+  const std::size_t needed = col.rounds_needed();
+  CHECK(needed > 0);
+  CHECK(needed <= col.rounds());
+  const std::vector<std::uint32_t> first(col.order(), col.order() + c.size());
+  col.build(b, c.view());
+  CHECK(col.rounds() == needed + needed / 4 + 2);
+  CHECK(col.rounds_needed() == needed);
+  for (std::size_t p = 0; p < c.size(); ++p) REQUIRE(col.order()[p] == first[p]);
 }
 
 TEST_CASE("contact grouping: each moving body's entries in entry order, the fixed bodies' behind them",

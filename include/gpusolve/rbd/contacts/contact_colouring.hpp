@@ -73,7 +73,7 @@ struct PickColour {
   std::uint32_t* colour;
   const std::uint64_t* best;
   std::uint32_t round;
-  std::uint32_t* counters;  // [0]: contacts coloured so far, [1]: colours used
+  std::uint32_t* counters;  // [0]: contacts coloured so far, [1]: colours used, [2]: rounds that coloured one
   GPUSOLVE_HD void operator()(std::size_t i) const {
     if (colour[i] != uncoloured) return;
     const std::uint32_t ends[2] = {c.a[i], c.b[i]};
@@ -92,6 +92,7 @@ struct PickColour {
     colour[i] = pick;
     cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(counters[0]).fetch_add(1, cuda::std::memory_order_relaxed);
     cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(counters[1]).fetch_max(pick + 1, cuda::std::memory_order_relaxed);
+    cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(counters[2]).fetch_max(round + 1, cuda::std::memory_order_relaxed);
   }
 };
 
@@ -155,14 +156,18 @@ class ContactColouring {
     gpusolve::detail::ensure_size(order_, nc);
     gpusolve::detail::ensure_size(best_, b.size());
     colour_.fill(detail::uncoloured, stream);
-    if (counters_.size_x() == 0) counters_.resize(2);
+    if (counters_.size_x() == 0) counters_.resize(3);
     counters_.fill(0u, stream);
     const auto g = grouping_.view();
     using GV = decltype(g);
     std::uint32_t round = 0, coloured = 0, colours = 0;
     // Rounds in batches between read-backs: every round colours at least the
-    // contact of smallest key, and most finish in a few dozen.
-    for (std::uint32_t batch = 4; coloured < nc; batch *= 2) {
+    // contact of smallest key, and most finish in a few dozen. The first batch
+    // runs a quarter more rounds than the last build needed (the contacts
+    // change little from step to step), so that most builds read back once;
+    // the batches after it start at 4 and double.
+    std::uint32_t batch = needed_ != 0 ? needed_ + needed_ / 4 + 2 : 4;
+    for (bool first = true; coloured < nc; batch = first ? 4 : 2 * batch, first = false) {
       for (std::uint32_t r = 0; r < batch; ++r, ++round) {
         launch(dev, b.size(), detail::SmallestUncoloured<BV, GV>{b, g, colour_.data(), best_.data()}, stream);
         launch(dev, nc, detail::PickColour<BV, CV, GV>{b, c, g, colour_.data(), best_.data(), round, counters_.data()},
@@ -172,6 +177,7 @@ class ContactColouring {
       colours = detail::read_back<Device>(counters_.data(), 1, stream);
     }
     rounds_ = round;
+    needed_ = detail::read_back<Device>(counters_.data(), 2, stream);
     const auto policy = detail::thrust_policy(dev, stream);
     thrust::sequence(policy, order_.data(), order_.data() + nc);
     gpusolve::detail::ensure_size(sorted_colour_, nc);
@@ -197,7 +203,9 @@ class ContactColouring {
   std::size_t offset(std::size_t k) const { return offsets_[k]; }
   const std::uint32_t* order() const { return order_.data(); }
   const std::uint32_t* colour() const { return colour_.data(); }
+  // The rounds the last build ran, and those it needed (the last that coloured a contact).
   std::size_t rounds() const { return rounds_; }
+  std::size_t rounds_needed() const { return needed_; }
 
  private:
   ContactGrouping<Device> grouping_;
@@ -206,6 +214,7 @@ class ContactColouring {
   VectorD1<std::uint64_t, device_is<Device>> best_;
   std::vector<std::size_t> offsets_{0};
   std::size_t rounds_ = 0;
+  std::uint32_t needed_ = 0;
 };
 
 }  // namespace gpusolve::rbd
