@@ -71,10 +71,7 @@ struct GaussSeidelIteration {
   template <class E>
   GPUSOLVE_HD void operator()(const E& e, std::size_t, bool last) const {
     sweep_colours(e, colours, last ? measuring : plain);
-    if (last) {
-      e.reduce(residual.width(), residual, T(0), MaxOp{}, residual_out);
-      e.sync();
-    }
+    if (last) reduce_residual(e, residual, residual_out);
   }
 };
 

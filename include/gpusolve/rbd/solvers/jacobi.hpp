@@ -58,10 +58,7 @@ struct JacobiIteration {
     }
     apply(e);
     e.sync();
-    if (last) {
-      e.reduce(residual.width(), residual, T(0), MaxOp{}, residual_out);
-      e.sync();
-    }
+    if (last) reduce_residual(e, residual, residual_out);
   }
 };
 
@@ -103,8 +100,7 @@ struct RotatedJacobiIteration {
     if (last) {
       e.each(bodies, rotation.fold(k));
       e.sync();
-      e.reduce(residual.width(), residual, T(0), MaxOp{}, residual_out);
-      e.sync();
+      reduce_residual(e, residual, residual_out);
     }
   }
   GPUSOLVE_EXEC_CHECK_DISABLE

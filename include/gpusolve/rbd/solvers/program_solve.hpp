@@ -34,6 +34,16 @@ struct ZeroImpulses {
   }
 };
 
+// The residual check's phase at the end of a run's last iteration: the
+// largest of the terms (ResidualOrNotFinite, over its width()) into *out,
+// read after the barrier that ends it.
+GPUSOLVE_EXEC_CHECK_DISABLE
+template <class E, class Terms, class T>
+GPUSOLVE_HD void reduce_residual(const E& e, const Terms& terms, T* out) {
+  e.reduce(terms.width(), terms, T(0), MaxOp{}, out);
+  e.sync();
+}
+
 // The phases a retry inside a persistent kernel starts with, as solve_relaxed
 // does on the host between attempts: the velocities the solve began with back
 // (`save`, CopyVelocities), zero impulses.
