@@ -14,8 +14,9 @@
 //
 // The column: sites of a square lattice (spacing 2.1 for spheres, 4.5 for
 // clumps: each reaches 2.2 from its centre) within a disc of radius 5
-// spacings, layer on layer, jittered by up to 0.05 (std::mt19937(1)); clumps
-// turned at random (docs/piles.md's draws).
+// spacings, or wider for more than 25 layers of it (a taller column lands
+// fast enough to blast its own pile flat), layer on layer, jittered by up to
+// 0.05 (std::mt19937(1)); clumps turned at random (docs/piles.md's draws).
 // The surface: the highest centre in each ring of width 2 about the vertical
 // axis through the bodies' mean position (parallel to the surface of their
 // tops); the flank is the rings whose height lies between 20% and 80% of the
@@ -39,8 +40,15 @@ namespace {
 using namespace gpusolve;
 using T = float;
 
-constexpr double disc_radius = 5;  // in lattice spacings
+constexpr double min_disc_radius = 5;  // in lattice spacings
+constexpr double max_layers = 25;
 constexpr double ring_width = 2;
+
+// The column's radius in lattice spacings: 5, or the disc that holds n bodies
+// in 25 layers.
+double disc_radius(std::size_t n) {
+  return std::max(min_disc_radius, std::sqrt(double(n) / (max_layers * 3.14159265358979)));
+}
 
 // The column of n bodies of the kind ("spheres" or "clumps") on the floor z = 0.
 rbd::BodySet<T> poured_column(const std::string& kind, std::size_t n) {
@@ -49,10 +57,11 @@ rbd::BodySet<T> poured_column(const std::string& kind, std::size_t n) {
   const bool clumps = kind == "clumps";
   const double s = clumps ? 4.5 : 2.1, z0 = clumps ? 2.3 : 1.1;
   std::vector<std::array<double, 2>> sites;
-  const int reach = int(disc_radius);
+  const double radius = disc_radius(n);
+  const int reach = int(radius);
   for (int i = -reach; i <= reach; ++i)
     for (int j = -reach; j <= reach; ++j)
-      if (i * i + j * j <= disc_radius * disc_radius) sites.push_back({i * s, j * s});
+      if (i * i + j * j <= radius * radius) sites.push_back({i * s, j * s});
   std::vector<rbd::Part<T>> line;
   for (int k = -1; k <= 1; ++k) line.push_back({rbd::sphere, {T(1), 0, 0, 0}, {T(1.2 * k), 0, 0}, {1, 0, 0, 0}});
   const rbd::CompoundType<T> type = set.add_compound_type(line, T(3));
