@@ -82,8 +82,9 @@ TEST_CASE("unattended steps: the same bodies, statistics and contacts as advance
 TEST_CASE("unattended steps: a step whose contacts outgrow the list is held and taken again",
           "[rbd_step][unattended]") {
   auto set_a = implosion<double>(4, 4.0), set_b = set_a;
-  World<device::cpu, double> a(set_a, ball_settings()), b(set_b, ball_settings());
-  // The list starts at 4 contacts per body: the ball passes that in the middle of the run.
+  SolverSettings<double> s = ball_settings();
+  s.contacts_per_body = 4;  // the ball passes 4 contacts per body in the middle of the run
+  World<device::cpu, double> a(set_a, s), b(set_b, s);
   const std::size_t capacity = 4 * set_a.size();
   std::vector<std::size_t> counts;
   for (int i = 0; i < 12; ++i) counts.push_back(a.step().solver.contacts);
@@ -114,6 +115,29 @@ TEST_CASE("unattended steps: a step whose contacts outgrow the list is held and 
     CHECK(b.steps_requeued() > 0);
     same_stats(a.latest_stats(), b.latest_stats());
   }
+}
+
+TEST_CASE("unattended steps: room for the contacts a scene holds, set from the start, holds no step",
+          "[rbd_step][unattended]") {
+  auto set_a = implosion<double>(4, 4.0), set_b = set_a, set_c = set_a;
+  const std::size_t n = set_a.size();
+  World<device::cpu, double> a(set_a, ball_settings());
+  std::size_t most = 0;
+  for (int i = 0; i < 12; ++i) most = std::max(most, a.step().solver.contacts);
+  REQUIRE(most > ContactSettings<double>{}.contacts_per_body * n);  // the default room runs short
+  SolverSettings<double> s = ball_settings();
+  s.contacts_per_body = most / n + 1;
+  World<device::cpu, double> b(set_b, s);
+  b.advance_unattended(12);
+  CHECK(b.steps_requeued() == 0);
+  CHECK(state(a) == state(b));
+  CHECK(b.contacts().capacity() == s.contacts_per_body * n);
+  World<device::cpu, double> c(set_c, ball_settings());  // the default room: the list grows on the way
+  c.advance_unattended(12);
+  CHECK(c.contacts().capacity() >= most);
+  CHECK(state(a) == state(c));
+  s.contacts_per_body = 0;
+  CHECK(refused_naming([&] { s.validate(); }, "contacts_per_body"));
 }
 
 TEST_CASE("unattended steps: a NaN or infinity names the body and the step, and nothing moves from there",

@@ -215,6 +215,7 @@ class World {
     const SolverSettings<T>& s = settings_;
     contacts_.keep_anchors(anchoring());
     detection_.set_graphs(s.detection_graph);
+    detection_.set_contacts_per_body(s.contacts_per_body);
     const ContactDefaults<T> defaults({s.friction, s.restitution, s.rolling, s.spinning}, s.bounce_threshold, s.dt);
     if (hold != nullptr)
       detection_.detect_queued(manager_.device(), contacts_, s.margin, defaults, hold, stream_);

@@ -27,6 +27,7 @@
 #include "gpusolve/rbd/execution/graph_replay.hpp"
 #include "gpusolve/container/ensure_size.hpp"
 #include "gpusolve/rbd/execution/backend.hpp"
+#include "gpusolve/rbd/settings/contact_settings.hpp"
 
 namespace gpusolve::rbd {
 namespace detail {
@@ -381,6 +382,8 @@ class CollisionDetection {
   // and the parameters stay (DetectionKey); off by default, the World follows
   // SolverSettings::detection_graph.
   void set_graphs(bool on) { graphs_ = on; }
+  // The room per body the contacts start with (ContactSettings::contacts_per_body).
+  void set_contacts_per_body(std::size_t k) { contacts_per_body_ = k; }
 
  private:
   // Validates the margin and sizes the scratch; false where there are no bodies (and no contacts).
@@ -400,7 +403,7 @@ class CollisionDetection {
     gpusolve::detail::ensure_size(kept_, detail::kept_contacts * n);
     gpusolve::detail::ensure_size(summary_, 1);
     gpusolve::detail::ensure_size(scan_, 1);
-    if (contacts.capacity() < 4 * n) contacts.resize(4 * n);
+    if (contacts.capacity() < contacts_per_body_ * n) contacts.resize(contacts_per_body_ * n);
     if ((bodies.shapes & ~spheres_and_planes) != 0 && candidate_a_.size_x() < 4 * n) {  // the pair passes run
       for (D1<std::uint32_t>* v : {&candidate_a_, &candidate_b_, &pair_points_, &point_offset_})
         gpusolve::detail::ensure_size(*v, 4 * n);
@@ -512,6 +515,7 @@ class CollisionDetection {
   detail::DeviceAlgorithms<Device> algorithms_;
   detail::GraphReplay<Device> graph_;
   bool graphs_ = false, empty_ = false;
+  std::size_t contacts_per_body_ = ContactSettings<T>{}.contacts_per_body;
   std::size_t sized_for_ = 0;  // the body count the scratch stores were last sized for
 };
 

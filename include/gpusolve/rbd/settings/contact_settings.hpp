@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
 #include "gpusolve/rbd/settings/setting_error.hpp"
 
@@ -36,6 +37,11 @@ struct ContactSettings {
   // warm start is on (it keeps the anchors); scenes of spheres and planes do
   // not pay for it.
   bool friction_anchors = true;
+  // The room per body the contact list starts with. A step that finds more
+  // grows it by half again (an unattended step is then held and queued again,
+  // World::steps_requeued); a settled sphere pile holds 1.5 to 3 per body, a
+  // pile of boxes about 5 (docs/memory.md).
+  std::size_t contacts_per_body = 2;
 
   // Throws InvalidArgumentError naming the first offending field.
   void validate() const {
@@ -45,6 +51,7 @@ struct ContactSettings {
     if (!(restitution >= 0 && restitution <= 1)) detail::bad_setting("restitution", "must lie in [0, 1]");
     if (!(rolling >= 0) || !std::isfinite(rolling)) detail::bad_setting("rolling", "must be non-negative and finite");
     if (!(spinning >= 0) || !std::isfinite(spinning)) detail::bad_setting("spinning", "must be non-negative and finite");
+    if (contacts_per_body == 0) detail::bad_setting("contacts_per_body", "must be at least 1");
     if (!(bounce_threshold >= 0) || !std::isfinite(bounce_threshold))
       detail::bad_setting("bounce_threshold", "must be non-negative and finite");
   }
