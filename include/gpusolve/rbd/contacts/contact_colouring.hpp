@@ -61,6 +61,13 @@ struct SmallestUncoloured {
   }
 };
 
+// What a colouring's rounds have counted so far, read back in one copy.
+struct ColouringCounters {
+  std::uint32_t coloured;  // contacts coloured
+  std::uint32_t colours;   // colours used
+  std::uint32_t rounds;    // the last round that coloured a contact, plus one
+};
+
 // An uncoloured contact that is the smallest at each of its moving bodies takes
 // the smallest colour none of its neighbours has. Contacts picked in one round
 // share no moving body, so none reads a colour another writes in this round.
@@ -73,7 +80,7 @@ struct PickColour {
   std::uint32_t* colour;
   const std::uint64_t* best;
   std::uint32_t round;
-  std::uint32_t* counters;  // [0]: contacts coloured so far, [1]: colours used, [2]: rounds that coloured one
+  ColouringCounters* counters;
   GPUSOLVE_HD void operator()(std::size_t i) const {
     if (colour[i] != uncoloured) return;
     const std::uint32_t ends[2] = {c.a[i], c.b[i]};
@@ -90,9 +97,10 @@ struct PickColour {
     while (pick < mask_colours && (used >> pick) & 1u) ++pick;
     if (pick == mask_colours) pick = mask_colours + round;
     colour[i] = pick;
-    cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(counters[0]).fetch_add(1, cuda::std::memory_order_relaxed);
-    cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(counters[1]).fetch_max(pick + 1, cuda::std::memory_order_relaxed);
-    cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(counters[2]).fetch_max(round + 1, cuda::std::memory_order_relaxed);
+    using Counter = cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>;
+    Counter(counters->coloured).fetch_add(1, cuda::std::memory_order_relaxed);
+    Counter(counters->colours).fetch_max(pick + 1, cuda::std::memory_order_relaxed);
+    Counter(counters->rounds).fetch_max(round + 1, cuda::std::memory_order_relaxed);
   }
 };
 
@@ -156,8 +164,8 @@ class ContactColouring {
     gpusolve::detail::ensure_size(order_, nc);
     gpusolve::detail::ensure_size(best_, b.size());
     colour_.fill(detail::uncoloured, stream);
-    if (counters_.size_x() == 0) counters_.resize(3);
-    counters_.fill(0u, stream);
+    if (counters_.size_x() == 0) counters_.resize(1);
+    counters_.fill(detail::ColouringCounters{}, stream);
     const auto g = grouping_.view();
     using GV = decltype(g);
     std::uint32_t round = 0, coloured = 0, colours = 0;
@@ -173,11 +181,10 @@ class ContactColouring {
         launch(dev, nc, detail::PickColour<BV, CV, GV>{b, c, g, colour_.data(), best_.data(), round, counters_.data()},
                stream);
       }
-      coloured = detail::read_back<Device>(counters_.data(), 0, stream);
-      colours = detail::read_back<Device>(counters_.data(), 1, stream);
+      const detail::ColouringCounters counted = detail::read_back<Device>(counters_.data(), 0, stream);
+      coloured = counted.coloured, colours = counted.colours, needed_ = counted.rounds;
     }
     rounds_ = round;
-    needed_ = detail::read_back<Device>(counters_.data(), 2, stream);
     const auto policy = detail::thrust_policy(dev, stream);
     thrust::sequence(policy, order_.data(), order_.data() + nc);
     gpusolve::detail::ensure_size(sorted_colour_, nc);
@@ -209,7 +216,8 @@ class ContactColouring {
 
  private:
   ContactGrouping<Device> grouping_;
-  U32 colour_, sorted_colour_, order_, counters_, bounds_;
+  U32 colour_, sorted_colour_, order_, bounds_;
+  VectorD1<detail::ColouringCounters, device_is<Device>> counters_;  // one, read back in one copy per batch
   VectorD1<std::uint32_t, device_is<device::cpu>> bounds_host_;
   VectorD1<std::uint64_t, device_is<Device>> best_;
   std::vector<std::size_t> offsets_{0};
