@@ -4,7 +4,7 @@
 //
 // Run: gpusolve_bench_atlas --scene pile|cubes|mixed|clumps|unions|column|pyramid|stack|field|slabs|hopper [--n 10000,100000] [--ratios 1,100,1000]
 //        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg]
-//        [--budgets default,it10,it20,s4x5,tol0.02,check10,launched,unanchored] [--margins 0.1]
+//        [--budgets default,it10,it20,s4x5,tol0.02,check10,corr0.4,launched,unanchored] [--margins 0.1]
 //        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, docs/piles.md), N spheres dropped into
@@ -42,7 +42,7 @@
 // --budgets: the defaults changed by one thing: itK, K iterations; tolX, the
 // tolerance X; sSxK, S substeps of K; checkK, a check every K; launched, the
 // solve as launches instead of the persistent kernel; unanchored, no friction
-// anchors.
+// anchors; corrX, the share X of a penetration removed per step (correction).
 // Measured, over the last third of the steps: time per whole step (detection,
 // solve, integration and World's statistics, what a user's loop pays) with CUDA
 // events around World::step, mean and median; mean iterations; the median final
@@ -150,13 +150,15 @@ SolverSettings<T> settings_for(const Run& r) {
     s.tolerance = std::numeric_limits<T>::min();
   } else if (r.budget.rfind("check", 0) == 0) {
     s.check_every = std::stoul(r.budget.substr(5));
+  } else if (r.budget.rfind("corr", 0) == 0) {
+    s.correction = T(std::stod(r.budget.substr(4)));  // the defaults with another share of a penetration removed per step
   } else if (r.budget == "launched") {
     s.persistent_max_contacts = 0;  // the defaults, as launches instead of the persistent kernel
   } else if (r.budget == "unanchored") {
     s.friction_anchors = false;  // the defaults without friction anchors
   } else if (r.budget != "default") {
     throw InvalidArgumentError("atlas: unknown budget '" + r.budget +
-                               "' (default, itK, sSxK, tolX, checkK, launched or unanchored)");
+                               "' (default, itK, sSxK, tolX, checkK, corrX, launched or unanchored)");
   }
   return s;
 }
