@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what building and testing gpusolve needs on a fresh Debian/Ubuntu
-# machine: CMake, a C++ compiler, Catch2 and Python 3 from the distribution.
+# machine: CMake, a C++ compiler, Catch2, OpenMPI and Python 3 from the
+# distribution.
 # The CUDA toolkit (nvcc, CCCL) is expected to be installed already; without it
 # only the host-compiler parts build.
 set -euo pipefail
@@ -10,6 +11,8 @@ command -v cmake >/dev/null 2>&1 || need+=(cmake)
 command -v g++ >/dev/null 2>&1 || need+=(g++)
 command -v python3 >/dev/null 2>&1 || need+=(python3)
 [ -f /usr/include/catch2/catch.hpp ] || [ -f /usr/include/catch2/catch_all.hpp ] || need+=(catch2)
+# MPI for the distributed world's tests (mpirun at 1, 2 and 4 ranks).
+command -v mpicxx >/dev/null 2>&1 && command -v mpirun >/dev/null 2>&1 || need+=(libopenmpi-dev openmpi-bin)
 [ -n "${GPUSOLVE_EXTRA_PACKAGES:-}" ] && need+=(${GPUSOLVE_EXTRA_PACKAGES})
 
 if [ ${#need[@]} -gt 0 ]; then

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <type_traits>
 
 #include "gpusolve/core/config.hpp"
@@ -17,6 +18,7 @@
 #include "gpusolve/rbd/collision/collision_detection.hpp"
 #include "gpusolve/rbd/contact_models/contact_model.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
+#include "gpusolve/rbd/execution/body_exchange.hpp"
 #include "gpusolve/rbd/execution/device_algorithms.hpp"
 #include "gpusolve/rbd/execution/unattended.hpp"
 #include "gpusolve/rbd/execution/stream_marks.hpp"
@@ -131,6 +133,18 @@ class World {
 
   // Copies positions, orientations and velocities back into the BodySet.
   void syncHost();
+
+  // Runs the solves distributed (rbd/distributed/ sets it): the bodies' sums
+  // and every reduction of the solver go through `exchange` (nullptr: none).
+  // Throws UnsupportedError naming the method where it does not run
+  // distributed (solves_distributed: the Jacobi family with Gather or UpdateCache).
+  void set_exchange(BodyExchange<T>* exchange);
+  // The contacts the last step remembered for the next one's warm start, on
+  // the host, and remember() of such contacts (after the BodySet was
+  // rewritten and synced, their pairs renumbered and sorted): rbd/distributed/
+  // moves them between ranks with their bodies.
+  RememberedContacts<T> remembered_contacts();
+  void remember(const RememberedContacts<T>& kept);
 
   Bodies<Device, T>& bodies();
   Contacts<Device, T, Model>& contacts();
@@ -421,6 +435,28 @@ template <class Device, class T, class Model, class Method, ShapeMask Shapes>
 void World<Device, T, Model, Method, Shapes>::syncHost() {
   finish();
   manager_.syncHost(stream_);
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+void World<Device, T, Model, Method, Shapes>::set_exchange(BodyExchange<T>* exchange) {
+  finish();
+  if constexpr (solves_distributed<solver_type, T>::value)
+    solver_.set_exchange(exchange);
+  else if (exchange != nullptr)
+    throw UnsupportedError(std::string("gpusolve: World::set_exchange: the method '") + Method::name +
+                           "' does not run distributed (jacobi and apgd with the Gather or UpdateCache sums do)");
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+RememberedContacts<T> World<Device, T, Model, Method, Shapes>::remembered_contacts() {
+  finish();
+  return warm_.host_copy(stream_);
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+void World<Device, T, Model, Method, Shapes>::remember(const RememberedContacts<T>& kept) {
+  finish();
+  warm_.restore(kept);
 }
 
 template <class Device, class T, class Model, class Method, ShapeMask Shapes>

@@ -118,7 +118,7 @@ struct Bodies {
 
     GPUSOLVE_HD std::size_t size() const { return count; }
     // A body that the integrator moves.
-    GPUSOLVE_HD bool moving(std::size_t i) const { return status[i] == active; }
+    GPUSOLVE_HD bool moving(std::size_t i) const { return moves(status[i]); }
   };
   static_assert(std::is_trivially_copyable_v<View>);
 

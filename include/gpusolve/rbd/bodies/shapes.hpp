@@ -18,7 +18,13 @@ namespace gpusolve::rbd {
 
 // What a body is doing. Fixed bodies never move (inverse mass and inertia are 0);
 // removed bodies keep their slot until the BodyManager rebuilds (thesis 5.1.2).
-enum BodyStatus : std::uint8_t { active = 0, fixed = 1, removed = 2 };
+// A shadow is the copy of a body that another rank owns (rbd/distributed/): it
+// moves as an active body does, but meets only active bodies, so that a pair
+// of two shadows, or of a shadow and a fixed body, is left to the ranks that own them.
+enum BodyStatus : std::uint8_t { active = 0, fixed = 1, removed = 2, shadow = 3 };
+
+// Whether a body of this status moves (active bodies and shadows).
+GPUSOLVE_HD inline bool moves(std::uint8_t status) { return status == active || status == shadow; }
 
 // Every kind, in the order of their values: the one list every dispatch is
 // generated from.

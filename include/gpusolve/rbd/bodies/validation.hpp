@@ -125,11 +125,11 @@ void validate_body(const Body<T>& b, std::size_t index) {
   require_finite(b.shape_param, index, "shape_param");
   require_finite(b.inertia, index, "inertia");
   require_finite(b.inv_inertia_body, index, "inv_inertia_body");
-  if (b.status != active && b.status != fixed && b.status != removed)
+  if (b.status != active && b.status != fixed && b.status != removed && b.status != shadow)
     throw InvalidBodyError(index, "status", "is not a BodyStatus");
   detail::require_unit(b.q, index, "q");
   detail::validate_shape(b.shape, b.shape_param, index, "");
-  const bool moving = b.status == active;
+  const bool moving = moves(b.status);
   if (moving && !visit_kind<bool>(
                     b.shape, [](auto k) { return ShapeTraits<decltype(k)::value>::moves; }, [] { return false; }))
     throw InvalidBodyError(index, "status", std::string(shape_name(b.shape)) + "s must be fixed");

@@ -80,7 +80,7 @@ struct BodyReach {
   View b;
   T margin;
   GPUSOLVE_HD T operator()(std::size_t i) const {
-    if (b.status[i] != active || !grid_candidate(b, i)) return T(0);
+    if (!moves(b.status[i]) || !grid_candidate(b, i)) return T(0);
     const T reach = reach_of(b, i, margin);
     return reach <= std::numeric_limits<T>::max() ? reach : std::numeric_limits<T>::infinity();
   }
@@ -103,7 +103,7 @@ struct GridGeometry {
   // Body i goes on the grid: a candidate that moves or fits in a cell.
   template <class View>
   GPUSOLVE_HD bool holds(const View& b, std::size_t i, T margin) const {
-    return valid && grid_candidate(b, i) && (b.status[i] == active || reach_of(b, i, margin) <= cell);
+    return valid && grid_candidate(b, i) && (moves(b.status[i]) || reach_of(b, i, margin) <= cell);
   }
   GPUSOLVE_HD std::int32_t coord(T x) const { return std::int32_t(std::floor(x * inv_cell)); }
   GPUSOLVE_HD std::uint32_t hash(std::int32_t x, std::int32_t y, std::int32_t z) const {

@@ -58,7 +58,7 @@ struct ListObstacles {
 };
 
 // The contact pairs of body i as body a: its grid neighbours j > i (a fixed
-// body only with moving ones) and, for a moving body, the obstacles.
+// body or a shadow only with active ones) and, for an active body, the obstacles.
 // candidates() lists those whose bounds meet; manifolds(i, j, ...) are a
 // pair's, over the kinds in M (body_manifolds.hpp); where M holds spheres and
 // planes only, no other pair is compiled in, and the walk itself finds the
@@ -138,8 +138,8 @@ struct ContactWalk {
 
   // Calls visit(j) for each candidate partner j of body i: the grid
   // neighbours j > i whose bounding spheres come within the margin (a fixed
-  // body only with moving ones) and, for a moving body, the obstacles near
-  // it; the pairs whose manifolds the pair passes (pair_passes.hpp) compute.
+  // body or a shadow only with active ones) and, for an active body, the
+  // obstacles near it; the pairs whose manifolds the pair passes (pair_passes.hpp) compute.
   template <class F>
   GPUSOLVE_HD void candidates(std::size_t i, F&& visit) const {
     const GridGeometry<T> g(grid.cell, grid.mask);

@@ -62,7 +62,7 @@ Frame snapshot(const BodySet<T>& bodies, std::size_t step, double time) {
     const Frame::Vec3 p{double(b.pos[0]), double(b.pos[1]), double(b.pos[2])};
     const Frame::Vec3 v{double(b.v[0]), double(b.v[1]), double(b.v[2])};
     const auto R = math::to_rotation_matrix(math::Quaternion<T>(b.q[0], b.q[1], b.q[2], b.q[3]));
-    const bool moving = b.status == active;
+    const bool moving = moves(b.status);
     if (b.shape != compound) {
       detail::add_primitive(f, b.shape, p, R, b.shape_param, moving, v);
       continue;

@@ -94,12 +94,18 @@ struct CacheToBodies {
   Iterate iterate;
   static constexpr std::uint32_t group = 4;
   GPUSOLVE_HD void operator()(std::size_t k) const {
+    T sv[3], sw[3];
+    sums(k, sv, sw);
+    iterate.add(b, k, sv, sw);
+  }
+  // Body k's sums over its slots.
+  GPUSOLVE_HD void sums(std::size_t k, T (&sv)[3], T (&sw)[3]) const {
     const std::uint32_t first = start[k], end = start[k + 1];
     const std::uint32_t last = (Sum || end == first) ? end : first + 1;
     // `group` slots at a time, their values loaded without a branch between
     // them: one memory round trip per group, not per slot and component. Each
     // sum keeps the order of slots.
-    T sv[3] = {}, sw[3] = {};
+    for (std::size_t c = 0; c < 3; ++c) sv[c] = T(0), sw[c] = T(0);
     for (std::uint32_t p = first; p < last; p += group) {
       T gv[group][3], gw[group][3];
       GPUSOLVE_UNROLL
@@ -111,16 +117,42 @@ struct CacheToBodies {
         if (p + q < last)
           for (std::size_t c = 0; c < 3; ++c) sv[c] += gv[q][c], sw[c] += gw[q][c];
     }
-    iterate.add(b, k, sv, sw);
+  }
+};
+
+// A distributed solve's halves of CacheToBodies, with the ranks' sums
+// combined between them (BodyExchange::combine): body k's sums of this
+// rank's contacts into row k of `out` (dv, then dw) ...
+template <class ToBodies, class T>
+struct StoreBodySums {
+  ToBodies to_bodies;
+  VectorD2View<T> out;  // bodies x 6
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    T sv[3], sw[3];
+    to_bodies.sums(k, sv, sw);
+    for (std::size_t c = 0; c < 3; ++c) out(k, c) = sv[c], out(k, 3 + c) = sw[c];
+  }
+};
+
+// ... and the combined sums added by the iterate.
+template <class ToBodies, class T>
+struct AddBodySums {
+  ToBodies to_bodies;
+  VectorD2View<T> in;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    const T sv[3] = {in(k, 0), in(k, 1), in(k, 2)}, sw[3] = {in(k, 3), in(k, 4), in(k, 5)};
+    to_bodies.iterate.add(to_bodies.b, k, sv, sw);
   }
 };
 
 // The apply() programs of the three strategies.
 template <class BV, class T, bool Sum, class Iterate>
 struct CacheApply {
+  using ToBodies = CacheToBodies<BV, T, Sum, Iterate>;
   ReduceVelocityUpdates<T> pass;  // pass.o is set per pass
   std::size_t passes, entries, bodies;
-  CacheToBodies<BV, T, Sum, Iterate> to_bodies;
+  ToBodies to_bodies;
+  VectorD2View<T> body_sums;  // bodies x 6: a distributed solve's (CacheStore::exchange_sums)
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
@@ -130,7 +162,18 @@ struct CacheApply {
       e.each(entries, r);
       e.sync();
     }
+    if constexpr (may_exchange<E>::value)
+      if (e.exchange != nullptr) return combined(e);
     e.each(bodies, to_bodies);
+  }
+  // A distributed solve: the sums of this rank's contacts, combined over the
+  // ranks that hold each body, then added.
+  template <class E>
+  void combined(const E& e) const {
+    e.each(bodies, StoreBodySums<ToBodies, T>{to_bodies, body_sums});
+    e.sync();
+    e.combine(body_sums.ptr, body_sums.pitch, bodies);
+    e.each(bodies, AddBodySums<ToBodies, T>{to_bodies, body_sums});
   }
 };
 
@@ -270,15 +313,21 @@ class CacheStore {
     return grouping_.program(b, c, stream);
   }
   CacheSink<T> sink() { return CacheSink<T>{dv_.view(), dw_.view(), grouping_.view().slot}; }
+  // A distributed solve (an executor with a BodyExchange) combines each
+  // body's sums over the ranks in a store of its own, held from here on.
+  void exchange_sums(bool on) { exchanging_ = on; }
  protected:
   template <bool Sum, class BV, class Iterate>
   CacheApply<BV, T, Sum, Iterate> cache_program(const BV& b, std::size_t passes, const Iterate& it) {
     const auto g = grouping_.view();
+    if (exchanging_) gpusolve::detail::ensure_size(body_sums_, b.size(), 6);
     return {{dv_.view(), dw_.view(), g.rank, 0}, passes, entries_, b.size(),
-            {b, dv_.view(), dw_.view(), g.start, it}};
+            {b, dv_.view(), dw_.view(), g.start, it}, exchanging_ ? body_sums_.view() : VectorD2View<T>{}};
   }
   ContactGrouping<Device> grouping_;
   Vec3Store<Device, T> dv_, dw_;
+  Vec3Store<Device, T> body_sums_;  // exchange_sums: bodies x 6
+  bool exchanging_ = false;
   std::size_t entries_ = 0;
 
  private:

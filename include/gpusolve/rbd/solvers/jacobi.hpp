@@ -226,6 +226,17 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   // that must not be taken). nullptr: never held.
   void hold_while(const std::uint32_t* hold) { hold_ = hold; }
 
+  // A distributed solve (rbd/distributed/): the bodies' sums and every
+  // reduction of an iteration are shared over the ranks through `exchange`
+  // (nullptr: none), as launches. Each rank's contacts are its own; a rank
+  // without contacts still takes part in every exchange. Not with Atomic,
+  // whose sums have no per-body store to combine.
+  template <class S = Strategy, std::enable_if_t<!std::is_same_v<S, Atomic>, int> = 0>
+  void set_exchange(BodyExchange<T>* exchange) {
+    run_.set_exchange(exchange);
+    acc_.exchange_sums(exchange != nullptr);
+  }
+
  private:
   using Sink = decltype(std::declval<Accumulator<Strategy, Device, T>&>().sink());
   // Atomic without momentum runs an iteration as one phase (RotatedJacobiIteration).
@@ -241,7 +252,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     CV c = contacts.view();
     const bool persistent = run_.persistent(contacts.expected_size(), s);
     if (!count_on_host(c, persistent, stream)) return false;  // held
-    if (!this->prepare(c, s, stats)) return false;
+    if (!this->prepare(c, s, stats) && run_.exchange() == nullptr) return false;
     const std::size_t width = grid_width(contacts, b, c);
     // The accumulator's preparation (Gather: the grouping's build) runs as the
     // persistent kernel's first phases, or is launched here.

@@ -13,6 +13,7 @@
 #include "gpusolve/memory/buffer.hpp"
 #include "gpusolve/memory/cuda_host_allocator.hpp"
 #include "gpusolve/memory/standard_allocator.hpp"
+#include "gpusolve/rbd/execution/body_exchange.hpp"
 #include "gpusolve/rbd/execution/device_algorithms.hpp"
 #include "gpusolve/rbd/execution/graph_replay.hpp"
 #include "gpusolve/rbd/execution/launch_exec.hpp"
@@ -66,10 +67,17 @@ GPUSOLVE_HD void restart_cold(const E& e, Save back, const CV& c) {
 template <class Device, class T>
 class ProgramSolve {
  public:
-  // Whether a solve of `expected` contacts runs as one persistent kernel.
+  // Whether a solve of `expected` contacts runs as one persistent kernel (never
+  // a distributed one: its exchanges are the host's).
   bool persistent(std::size_t expected, const SolverSettings<T>& s) const {
-    return expected <= s.persistent_max_contacts && PersistentLoop<Device, T>::available();
+    return exchange_ == nullptr && expected <= s.persistent_max_contacts && PersistentLoop<Device, T>::available();
   }
+
+  // The ranks a solve shares its bodies with (nullptr: none). A distributed
+  // solve runs as launches, without graphs, and every reduction and body sum
+  // goes through the exchange.
+  void set_exchange(BodyExchange<T>* exchange) { exchange_ = exchange; }
+  BodyExchange<T>* exchange() const { return exchange_; }
 
   // Before a solve's programs are made: the residual's slot, the retry scale,
   // and, for graphs, the reductions' storage over `width` terms.
@@ -87,7 +95,7 @@ class ProgramSolve {
   }
   T* residual_out() { return residual_out_.data(); }
   const T* scale() const { return scale_.data(); }
-  LaunchExec<Device, T> launched(stream_t stream) { return {stream, &algorithms_}; }
+  LaunchExec<Device, T> launched(stream_t stream) { return {stream, &algorithms_, exchange_}; }
 
   // The whole solve as one kernel: attempts of `start` (start(e, retry)), runs
   // of `iteration` between the checks, `between` after a check that goes on;
@@ -144,14 +152,14 @@ class ProgramSolve {
       const auto start = make_start(first_attempt);
       // Iterations `first` ... `last`, the last one measuring the residual.
       auto iterations = [&](std::size_t first, std::size_t last, stream_t q) {
-        const LaunchExec<Device, T> e{q, &algorithms_};
+        const LaunchExec<Device, T> e{q, &algorithms_, exchange_};
         for (std::size_t it = first; it <= last; ++it) iteration(e, it - first + 1, it == last);
       };
       ConvergenceMonitor<T> monitor(s, st);
       for (std::size_t first = 1;;) {
         const std::size_t last = monitor.next_check(first);
         if (first == 1) start(launched(stream));  // a graph's kernels stay the same from run to run without the start's
-        if (s.graphs)
+        if (s.graphs && exchange_ == nullptr)
           graph_.run([&](stream_t q) { iterations(first, last, q); }, stream);
         else
           iterations(first, last, stream);
@@ -180,6 +188,7 @@ class ProgramSolve {
   VectorD1<T, device_is<Device>> scale_;  // the inverse blocks' factor: retry_omega_factor^retries
   bool scale_is_one_ = true;               // *scale_ between solves, as the host last queued it
   StreamMarks<Device, 1> done_;
+  BodyExchange<T>* exchange_ = nullptr;  // set_exchange
 };
 
 }  // namespace gpusolve::rbd::detail

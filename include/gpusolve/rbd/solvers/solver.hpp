@@ -10,6 +10,7 @@
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
+#include "gpusolve/rbd/execution/body_exchange.hpp"
 #include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
 
@@ -93,7 +94,6 @@ struct queues_verdict<S, Device, T, Model,
                                                                             std::declval<SolverStats<T>&>()))>>
     : std::true_type {};
 
-// The relaxation a solve uses: the settings' omega, or the method's default when it is 0.
 // Whether S solves contacts whose count only the backend knows
 // (Contacts::count_on_device) and skips a held step (hold_while(hold): *hold
 // not 0), so that World::advance_unattended queues its steps without a wait.
@@ -103,6 +103,15 @@ template <class S>
 struct solves_unattended<S, std::void_t<decltype(std::declval<S&>().hold_while(static_cast<const std::uint32_t*>(nullptr)))>>
     : std::true_type {};
 
+// Whether solver S runs distributed: set_exchange(BodyExchange<T>*) shares its
+// bodies' sums and reductions over ranks (the Jacobi family, summing per body).
+template <class S, class T, class = void>
+struct solves_distributed : std::false_type {};
+template <class S, class T>
+struct solves_distributed<S, T, std::void_t<decltype(std::declval<S&>().set_exchange(static_cast<BodyExchange<T>*>(nullptr)))>>
+    : std::true_type {};
+
+// The relaxation a solve uses: the settings' omega, or the method's default when it is 0.
 template <class S, class T>
 T omega_of(const SolverSettings<T>& s) {
   return s.omega > T(0) ? s.omega : T(S::default_omega);

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include <thrust/binary_search.h>
 #include <thrust/execution_policy.h>
@@ -17,6 +18,7 @@
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
 #include "gpusolve/rbd/solvers/friction_anchors.hpp"
 #include "gpusolve/rbd/contacts/extent.hpp"
+#include "gpusolve/rbd/execution/backend.hpp"
 #include "gpusolve/container/ensure_size.hpp"
 
 namespace gpusolve::rbd {
@@ -135,6 +137,16 @@ struct CarryImpulse {
 
 }  // namespace detail
 
+// Remembered contacts on the host (WarmStart::host_copy): per contact its
+// pair key (pair_key(a, b)), feature id and `width` values (WarmStart's rows).
+template <class T>
+struct RememberedContacts {
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint32_t> features;
+  std::vector<T> values;
+  std::size_t width = 0;
+};
+
 // The previous step's pair keys and impulses, kept on the contacts' backend (no
 // host round trip). carry() after collision detection fills contacts.x; the
 // solver must then start from it (JacobiSolver::solve with from_x). remember()
@@ -179,6 +191,39 @@ class WarmStart {
   }
   // No impulses to carry (warm starting off): the next carry() starts all from zero.
   void forget() { count_ = 0; }
+
+  // The remembered contacts, copied to the host (rbd/distributed/ moves
+  // them between ranks with their bodies), and restore() of such a copy:
+  // the next carry() starts from it. Its keys must be sorted.
+  RememberedContacts<T> host_copy(stream_t stream = stream_t{}) const {
+    RememberedContacts<T> out;
+    out.width = p_.size_y();
+    const std::size_t n = count_ == 0 ? 0 : detail::read_back<Device>(live_.data(), 0, stream);
+    if (n == 0) return out;
+    out.keys.resize(n), out.features.resize(n), out.values.resize(n * out.width);
+    const VectorD1<std::uint64_t, device_is<device::cpu>> keys(keys_);
+    const VectorD1<std::uint32_t, device_is<device::cpu>> features(features_);
+    const VectorD2<T, device_is<device::cpu>> p(p_);
+    for (std::size_t i = 0; i < n; ++i) {
+      out.keys[i] = keys(i), out.features[i] = features(i);
+      for (std::size_t r = 0; r < out.width; ++r) out.values[i * out.width + r] = p(i, r);
+    }
+    return out;
+  }
+  void restore(const RememberedContacts<T>& kept) {
+    count_ = kept.keys.size();
+    if (count_ == 0) return;
+    VectorD1<std::uint64_t, device_is<device::cpu>> keys(count_);
+    VectorD1<std::uint32_t, device_is<device::cpu>> features(count_), live(1);
+    VectorD2<T, device_is<device::cpu>> p(count_, kept.width);
+    for (std::size_t i = 0; i < count_; ++i) {
+      keys(i) = kept.keys[i], features(i) = kept.features[i];
+      for (std::size_t r = 0; r < kept.width; ++r) p(i, r) = kept.values[i * kept.width + r];
+    }
+    live(0) = std::uint32_t(count_);
+    keys_.resize(count_), features_.resize(count_), p_.resize(count_, kept.width), live_.resize(1);
+    keys_ = keys, features_ = features, p_ = p, live_ = live;
+  }
   // The bound of the contacts remembered (their count is written where remember runs).
   std::size_t remembered() const { return count_; }
 

@@ -151,7 +151,7 @@ void add_state_primitives(const BodySet<T>& set, std::size_t i, std::vector<Stat
   const Body<T>& b = set[i];
   if (b.status == removed) return;
   const auto R = math::to_rotation_matrix(math::Quaternion<double>(b.q[0], b.q[1], b.q[2], b.q[3]));
-  const bool moving = b.status == active;
+  const bool moving = moves(b.status);
   if (b.shape != compound) {
     const PlacedShape<double> s = placed(b.pos, R, b.shape_param);
     const double bound = shape_bound<double>(b.shape, s.p[0], s.p[1], s.p[2]);

@@ -1,0 +1,469 @@
+// DistributedWorld: one scene over the ranks of an MPI communicator, each rank
+// a World over its subdomain (HCSITS's scheme, Preclik and Rüde 2015,
+// "Ultrascale simulations of non-smooth granular dynamics", Comput. Part. Mech. 2).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <mpi.h>
+
+#include "gpusolve/rbd/bodies/body_set.hpp"
+#include "gpusolve/rbd/bodies/validation.hpp"
+#include "gpusolve/rbd/distributed/mpi_body_exchange.hpp"
+#include "gpusolve/rbd/distributed/rank_agreement.hpp"
+#include "gpusolve/rbd/distributed/rank_grid.hpp"
+#include "gpusolve/rbd/solvers/friction_anchors.hpp"
+#include "gpusolve/rbd/world.hpp"
+
+namespace gpusolve::rbd {
+
+// The figures of one distributed step, the same on every rank.
+template <class T>
+struct DistributedStats {
+  StepStats<T> local;           // this rank's World (its contacts; its bodies, shadows included)
+  std::size_t contacts = 0;     // over the ranks: each contact is solved by one rank
+  std::size_t bodies = 0;       // moving bodies, each counted by its owner
+  T max_penetration = 0;        // over the ranks' contacts (StepStats::max_penetration)
+  T kinetic_energy = 0;         // of the moving bodies, each counted once
+  std::array<T, 3> momentum{};  // sum of m v over the moving bodies
+  std::size_t shadows = 0;      // shadow copies held, over the ranks
+  double seconds_exchange = 0;  // this rank: bodies moved and shadows sent, plus the solve's exchanges
+  double seconds_step = 0;      // this rank: the World's step, the solve's exchanges included
+};
+
+// Each rank owns the moving bodies whose centre lies in its cell of a
+// RankGrid over the scene, and holds shadow copies (BodyStatus::shadow) of
+// the bodies that lower ranks own within contact reach of its cell; every
+// fixed body is on every rank. A contact is solved by the lowest rank among
+// its bodies' owners (a shadow meets only active bodies: collision_detection.hpp),
+// and in every solver iteration the shadows' velocity changes are summed to
+// their owners and the totals sent back (MpiBodyExchange); the residual
+// checks and the momentum's sums are reduced over the ranks. Before each
+// step, bodies that crossed into another cell move to its rank and the
+// shadows are sent again. A rank's bodies are kept in the order of their
+// global ids, so every pair of bodies meets in the roles it has in one
+// World over the whole scene, and the warm start follows the renumbering.
+// Global ids: the bodies each rank passes in, numbered rank by rank.
+//
+// Runs on the CPU backend (the device exchange is the multi-GPU issue's);
+// methods that run distributed: World's solves_distributed (jacobi, apgd
+// with Gather or UpdateCache sums). A compound is refused by body. Every rank
+// passes the same settings and the same materials. A rank that throws (a body
+// that is not valid or not finite, named by its global id) makes every rank
+// throw the same error (RankAgreement).
+template <class T = float, class Model = ConeFriction, class Method = AcceleratedJacobi<Gather>,
+          ShapeMask Shapes = all_shapes>
+class DistributedWorld {
+ public:
+  using LocalWorld = World<device::cpu, T, Model, Method, Shapes>;
+  using Vec = std::array<T, 3>;
+
+  // `mine`: the bodies this rank adds (all on one rank and none on the
+  // others, or any split). The grid spans the moving bodies' centres unless
+  // lo and hi are given.
+  DistributedWorld(MPI_Comm comm, const BodySet<T>& mine, const SolverSettings<T>& settings,
+                   std::optional<std::pair<Vec, Vec>> box = std::nullopt)
+      : comm_(comm), agree_(comm), local_(mine), exchange_(comm) {
+    MPI_Comm_rank(comm, &rank_);
+    MPI_Comm_size(comm, &ranks_);
+    local_.records().clear();
+    std::vector<Placed> added = number(mine);
+    agree_.run([&] { validate(added); });
+    const std::vector<Placed> fixed_everywhere = gather_fixed(added);
+    grid_.emplace(dims(), box ? box->first : span(added).first, box ? box->second : span(added).second);
+    reach_ = largest_bound(added) + settings.margin;
+    std::vector<Placed> owned;
+    for (const Placed& p : added)
+      if (p.body.status != fixed) owned.push_back(p);
+    fixed_ = fixed_everywhere;
+    owned_ = send_to_owners(owned);
+    world_.emplace(local_, settings);
+    world_->set_exchange(&exchange_);
+    rebuild({});
+  }
+
+  // One step of the whole scene; every rank calls it.
+  DistributedStats<T> step() {
+    const auto start = std::chrono::steady_clock::now();
+    collect_owned();
+    std::vector<std::vector<Remembered>> to = remembered_by_rank();
+    owned_ = send_to_owners(owned_);
+    rebuild(all_to_all(to));
+    ++steps_;
+    const auto exchanged = std::chrono::steady_clock::now();
+    exchange_.take_seconds();
+    const StepStats<T> st = world_->step();
+    DistributedStats<T> out;
+    out.seconds_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchanged).count();
+    out.seconds_exchange = std::chrono::duration<double>(exchanged - start).count() + exchange_.take_seconds();
+    out.local = st;
+    figures(st, out);
+    return out;
+  }
+
+  // The moving bodies this rank owns after the last step, with their global ids.
+  std::vector<std::pair<std::uint64_t, Body<T>>> owned() {
+    collect_owned();
+    std::vector<std::pair<std::uint64_t, Body<T>>> out;
+    for (const Placed& p : owned_) out.push_back({p.gid, p.body});
+    return out;
+  }
+
+  // Calls f(body) for the moving body with global id `gid` on the rank that
+  // owns it (returns whether this rank does); the next step takes it as
+  // changed. Every rank calls it.
+  template <class F>
+  bool modify(std::uint64_t gid, F&& f) {
+    collect_owned();
+    for (Placed& p : owned_)
+      if (p.gid == gid) {
+        f(p.body);
+        return true;
+      }
+    return false;
+  }
+
+  // Every body of the scene in the order of the global ids, on rank `root`
+  // (empty elsewhere): moving bodies from their owners, fixed ones as added.
+  std::vector<Body<T>> gather(int root = 0) {
+    collect_owned();
+    std::vector<Placed> all = gather_to(owned_, root);
+    if (rank_ != root) return {};
+    all.insert(all.end(), fixed_.begin(), fixed_.end());
+    std::sort(all.begin(), all.end(), [](const Placed& a, const Placed& b) { return a.gid < b.gid; });
+    std::vector<Body<T>> out;
+    for (const Placed& p : all) out.push_back(p.body);
+    return out;
+  }
+
+  int rank() const { return rank_; }
+  int ranks() const { return ranks_; }
+  LocalWorld& local_world() { return *world_; }
+
+ private:
+  // A body and its global id, as ranks send them (plain bytes).
+  struct Placed {
+    std::uint64_t gid;
+    Body<T> body;
+  };
+  static_assert(std::is_trivially_copyable_v<Placed>);
+
+  // A contact remembered for the warm start, by its bodies' global ids, as
+  // ranks send it to the rank that solves it next (WarmStart's values: the
+  // impulse, then a friction anchor or NaN where it keeps none).
+  static constexpr std::size_t remembered_width = Model::rows + detail::anchor_values;
+  struct Remembered {
+    std::uint64_t a, b;
+    std::uint32_t feature;
+    T values[remembered_width];
+  };
+
+  // Global ids: this rank's bodies after those of the ranks before it.
+  std::vector<Placed> number(const BodySet<T>& mine) const {
+    std::uint64_t count = mine.size(), first = 0;
+    MPI_Exscan(&count, &first, 1, MPI_UINT64_T, MPI_SUM, comm_);
+    if (rank_ == 0) first = 0;
+    std::vector<Placed> out;
+    for (std::size_t k = 0; k < mine.size(); ++k) out.push_back({first + k, mine[k]});
+    return out;
+  }
+
+  // A state that is not finite stops the step before it is taken, named as World names it.
+  void require_finite_state(const Body<T>& b, std::uint64_t gid) const {
+    const std::pair<const char*, const T*> state[] = {{"pos", b.pos.data()}, {"q", b.q.data()}, {"v", b.v.data()}, {"w", b.w.data()}};
+    for (const auto& [field, x] : state)
+      for (int c = 0; c < (field[0] == 'q' ? 4 : 3); ++c)
+        if (!std::isfinite(x[c])) throw NonFiniteStateError(std::size_t(gid), field, steps_);
+  }
+
+  static void validate(const std::vector<Placed>& bodies) {
+    for (const Placed& p : bodies) {
+      if (p.body.shape == compound)
+        throw InvalidBodyError(std::size_t(p.gid), "shape", "compounds do not run distributed yet");
+      if (p.body.status == shadow) throw InvalidBodyError(std::size_t(p.gid), "status", "shadows are the world's own");
+      validate_body(p.body, std::size_t(p.gid));
+    }
+  }
+
+  // Every rank's fixed bodies, on every rank.
+  std::vector<Placed> gather_fixed(const std::vector<Placed>& added) const {
+    std::vector<Placed> mine;
+    for (const Placed& p : added)
+      if (p.body.status == fixed) mine.push_back(p);
+    return all_gather(mine);
+  }
+
+  std::vector<Placed> all_gather(const std::vector<Placed>& mine) const {
+    const int bytes = int(mine.size() * sizeof(Placed));
+    std::vector<int> counts(ranks_), offsets(ranks_);
+    MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+    int total = 0;
+    for (int r = 0; r < ranks_; ++r) offsets[r] = total, total += counts[r];
+    std::vector<Placed> all(std::size_t(total) / sizeof(Placed));
+    MPI_Allgatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, comm_);
+    return all;
+  }
+
+  std::vector<Placed> gather_to(const std::vector<Placed>& mine, int root) const {
+    const int bytes = int(mine.size() * sizeof(Placed));
+    std::vector<int> counts(ranks_), offsets(ranks_);
+    MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
+    int total = 0;
+    for (int r = 0; r < ranks_; ++r) offsets[r] = total, total += counts[r];
+    std::vector<Placed> all(rank_ == root ? std::size_t(total) / sizeof(Placed) : 0);
+    MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, root, comm_);
+    return all;
+  }
+
+  // The ranks along x and y (a pile is tall in z): MPI_Dims_create with z at 1.
+  std::array<int, 3> dims() const {
+    int d[3] = {0, 0, 1};
+    MPI_Dims_create(ranks_, 3, d);
+    return {d[0], d[1], d[2]};
+  }
+
+  // The box of the moving bodies' centres over the ranks.
+  std::pair<Vec, Vec> span(const std::vector<Placed>& added) const {
+    T lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<T>::max(), hi[a] = -std::numeric_limits<T>::max();
+    for (const Placed& p : added)
+      if (p.body.status != fixed)
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p.body.pos[a]), hi[a] = std::max(hi[a], p.body.pos[a]);
+    MPI_Allreduce(MPI_IN_PLACE, lo, 3, detail::mpi_type<T>(), MPI_MIN, comm_);
+    MPI_Allreduce(MPI_IN_PLACE, hi, 3, detail::mpi_type<T>(), MPI_MAX, comm_);
+    Vec l{}, h{};
+    for (int a = 0; a < 3; ++a) l[a] = lo[a] <= hi[a] ? lo[a] : T(0), h[a] = lo[a] <= hi[a] ? hi[a] : T(0);
+    return {l, h};
+  }
+
+  static T bound(const Body<T>& b) {
+    return shape_bound<T>(b.shape, b.shape_param[0], b.shape_param[1], b.shape_param[2]);
+  }
+
+  // The largest bounding radius of a moving body, over the ranks.
+  T largest_bound(const std::vector<Placed>& added) const {
+    T r = 0;
+    for (const Placed& p : added)
+      if (p.body.status != fixed) r = std::max(r, bound(p.body));
+    MPI_Allreduce(MPI_IN_PLACE, &r, 1, detail::mpi_type<T>(), MPI_MAX, comm_);
+    return r;
+  }
+
+  // Sends each body to the rank whose cell holds its centre; returns the
+  // bodies this rank owns, in the order of their ids.
+  std::vector<Placed> send_to_owners(const std::vector<Placed>& bodies) const {
+    std::vector<std::vector<Placed>> to(ranks_);
+    for (const Placed& p : bodies) to[grid_->owner(p.body.pos)].push_back(p);
+    std::vector<Placed> mine = all_to_all(to);
+    std::sort(mine.begin(), mine.end(), [](const Placed& a, const Placed& b) { return a.gid < b.gid; });
+    return mine;
+  }
+
+  // Sends to[r] to rank r; returns what came, rank by rank.
+  template <class E>
+  std::vector<E> all_to_all(const std::vector<std::vector<E>>& to) const {
+    std::vector<int> out_counts(ranks_), out_offsets(ranks_), in_counts(ranks_), in_offsets(ranks_);
+    std::vector<E> out;
+    for (int r = 0; r < ranks_; ++r) {
+      out_offsets[r] = int(out.size() * sizeof(E));
+      out_counts[r] = int(to[r].size() * sizeof(E));
+      out.insert(out.end(), to[r].begin(), to[r].end());
+    }
+    MPI_Alltoall(out_counts.data(), 1, MPI_INT, in_counts.data(), 1, MPI_INT, comm_);
+    int total = 0;
+    for (int r = 0; r < ranks_; ++r) in_offsets[r] = total, total += in_counts[r];
+    std::vector<E> in(std::size_t(total) / sizeof(E));
+    MPI_Alltoallv(out.data(), out_counts.data(), out_offsets.data(), MPI_BYTE, in.data(), in_counts.data(),
+                  in_offsets.data(), MPI_BYTE, comm_);
+    return in;
+  }
+
+  // The owned bodies' state from the World after its last step.
+  void collect_owned() {
+    if (!stepped_) return;
+    world_->syncHost();
+    std::size_t o = 0;
+    for (std::size_t k = 0; k < local_.size(); ++k)
+      if (local_[k].status == active) owned_[o++].body = local_[k];
+    stepped_ = false;
+  }
+
+  // The contacts this rank remembered in the last step, by the rank that
+  // solves them next: the lower owner of their bodies once the bodies have
+  // moved to the cells of their centres (a fixed body has no owner). Shadows
+  // moved exactly as their owners did, so every rank finds the same owners.
+  std::vector<std::vector<Remembered>> remembered_by_rank() {
+    std::vector<std::vector<Remembered>> to(ranks_);
+    const RememberedContacts<T> kept = world_->remembered_contacts();
+    auto next_owner = [&](std::uint32_t k) {
+      return local_[k].status == fixed ? ranks_ : grid_->owner(local_[k].pos);
+    };
+    for (std::size_t i = 0; i < kept.keys.size(); ++i) {
+      const std::uint32_t a = pair_a(kept.keys[i]), b = pair_b(kept.keys[i]);
+      Remembered m{gids_[a], gids_[b], kept.features[i], {}};
+      for (std::size_t r = 0; r < remembered_width; ++r)
+        m.values[r] = r < kept.width ? kept.values[i * kept.width + r] : std::numeric_limits<T>::quiet_NaN();
+      to[std::min(next_owner(a), next_owner(b))].push_back(m);
+    }
+    return to;
+  }
+
+  // `moved` as the World's remembered contacts, by the new local indices
+  // (with anchor values: a step whose contacts keep no anchors ignores them).
+  void remember(const std::vector<Remembered>& moved) {
+    RememberedContacts<T> kept;
+    kept.width = remembered_width;
+    auto local = [&](std::uint64_t gid) {
+      return std::uint32_t(std::lower_bound(gids_.begin(), gids_.end(), gid) - gids_.begin());
+    };
+    std::vector<std::pair<std::uint64_t, std::size_t>> order;
+    for (std::size_t i = 0; i < moved.size(); ++i) order.push_back({pair_key(local(moved[i].a), local(moved[i].b)), i});
+    std::stable_sort(order.begin(), order.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& [key, i] : order) {
+      kept.keys.push_back(key);
+      kept.features.push_back(moved[i].feature);
+      kept.values.insert(kept.values.end(), moved[i].values, moved[i].values + kept.width);
+    }
+    world_->remember(kept);
+  }
+
+  // The World's bodies again: the fixed ones, this rank's own, and shadows of
+  // the bodies that higher ranks own within reach of this rank's cell, in the
+  // order of their ids; the contacts it solves next remembered (`moved`), the
+  // exchange told which bodies are shared.
+  void rebuild(const std::vector<Remembered>& moved) {
+    std::vector<std::vector<Placed>> to(ranks_);
+    std::vector<std::vector<std::size_t>> sent(ranks_);  // indices into owned_
+    for (std::size_t k = 0; k < owned_.size(); ++k)
+      for (int r = 0; r < rank_; ++r)
+        if (grid_->distance(owned_[k].body.pos, r) <= bound(owned_[k].body) + reach_) {
+          to[r].push_back(owned_[k]);
+          sent[r].push_back(k);
+        }
+    const std::vector<Placed> came = all_to_all(to);
+    // The shadows arrive rank by rank, each rank's in the order it sent them.
+    std::vector<int> from;
+    {
+      std::vector<int> counts(ranks_), in(ranks_);
+      for (int r = 0; r < ranks_; ++r) counts[r] = int(to[r].size());
+      MPI_Alltoall(counts.data(), 1, MPI_INT, in.data(), 1, MPI_INT, comm_);
+      for (int r = 0; r < ranks_; ++r) from.insert(from.end(), std::size_t(in[r]), r);
+    }
+    // Merge fixed, owned and shadows by id.
+    struct Entry {
+      std::uint64_t gid;
+      const Placed* p;
+      int kind;  // 0 fixed, 1 owned (index `at` into owned_), 2 shadow from rank `at`
+      std::size_t at;
+    };
+    std::vector<Entry> all;
+    for (const Placed& p : fixed_) all.push_back({p.gid, &p, 0, 0});
+    for (std::size_t k = 0; k < owned_.size(); ++k) all.push_back({owned_[k].gid, &owned_[k], 1, k});
+    for (std::size_t k = 0; k < came.size(); ++k) all.push_back({came[k].gid, &came[k], 2, std::size_t(from[k])});
+    std::sort(all.begin(), all.end(), [](const Entry& a, const Entry& b) { return a.gid < b.gid; });
+    std::vector<std::uint64_t> gids(all.size());
+    std::vector<Body<T>>& records = local_.records();
+    records.resize(all.size());
+    SharedBodies shared;
+    shared.shadows.assign(ranks_, {});
+    shared.copies.assign(ranks_, {});
+    std::vector<std::size_t> local_of_owned(owned_.size());
+    std::vector<std::vector<std::size_t>> shadows_by_rank(ranks_);
+    for (std::size_t k = 0; k < all.size(); ++k) {
+      gids[k] = all[k].gid;
+      records[k] = all[k].p->body;
+      if (all[k].kind == 1) local_of_owned[all[k].at] = k;
+      if (all[k].kind == 2) records[k].status = shadow;
+    }
+    // The order each rank sent its bodies in: their place among `came`.
+    {
+      std::vector<std::size_t> place(came.size());
+      for (std::size_t k = 0; k < all.size(); ++k)
+        if (all[k].kind == 2) place[std::size_t(all[k].p - came.data())] = k;
+      for (std::size_t k = 0; k < came.size(); ++k) shared.shadows[from[k]].push_back(place[k]);
+    }
+    for (int r = 0; r < ranks_; ++r)
+      for (std::size_t k : sent[r]) shared.copies[r].push_back(local_of_owned[k]);
+    // Every rank's bodies valid and finite before the World sees them, or the
+    // same error on every rank, and no step.
+    agree_.run([&] {
+      for (std::size_t k = 0; k < records.size(); ++k) {
+        require_finite_state(records[k], gids[k]);
+        validate_body(records[k], std::size_t(gids[k]));
+      }
+    });
+    gids_ = std::move(gids);
+    shadows_ = came.size();
+    world_->manager().syncDeviceFull();
+    remember(moved);
+    exchange_.share(std::move(shared));
+    stepped_ = true;
+  }
+
+  // The step's figures over the ranks: owned bodies only, each contact once.
+  void figures(const StepStats<T>& st, DistributedStats<T>& out) {
+    world_->syncHost();
+    double sums[6] = {0, 0, 0, 0, 0, 0};  // bodies, energy, momentum, shadows
+    for (std::size_t k = 0; k < local_.size(); ++k) {
+      const Body<T>& b = local_[k];
+      if (b.status != active) continue;
+      sums[0] += 1;
+      sums[1] += kinetic_energy(b);
+      for (int a = 0; a < 3; ++a) sums[2 + a] += double(b.v[a]) / double(b.inv_mass);
+    }
+    sums[5] = double(shadows_);
+    MPI_Allreduce(MPI_IN_PLACE, sums, 6, MPI_DOUBLE, MPI_SUM, comm_);
+    std::uint64_t contacts = st.solver.contacts;
+    MPI_Allreduce(MPI_IN_PLACE, &contacts, 1, MPI_UINT64_T, MPI_SUM, comm_);
+    T penetration = st.max_penetration;
+    MPI_Allreduce(MPI_IN_PLACE, &penetration, 1, detail::mpi_type<T>(), MPI_MAX, comm_);
+    out.bodies = std::size_t(sums[0]);
+    out.kinetic_energy = T(sums[1]);
+    for (int a = 0; a < 3; ++a) out.momentum[a] = T(sums[2 + a]);
+    out.shadows = std::size_t(sums[5]);
+    out.contacts = std::size_t(contacts);
+    out.max_penetration = penetration;
+  }
+
+  // 1/2 m v^2 + 1/2 w . I w, with I in the world frame (R I_body R^T).
+  static double kinetic_energy(const Body<T>& b) {
+    const math::Quaternion<double> q(b.q[0], b.q[1], b.q[2], b.q[3]);
+    const auto R = math::to_rotation_matrix(q);
+    double wb[3] = {0, 0, 0};  // w in the body frame: R^T w
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) wb[i] += R[3 * k + i] * double(b.w[k]);
+    double e = 0;
+    for (int i = 0; i < 3; ++i) {
+      e += double(b.v[i]) * double(b.v[i]) / double(b.inv_mass);
+      for (int k = 0; k < 3; ++k) e += wb[i] * double(b.inertia[3 * i + k]) * wb[k];
+    }
+    return e / 2;
+  }
+
+  MPI_Comm comm_;
+  int rank_ = 0, ranks_ = 1;
+  RankAgreement agree_;
+  BodySet<T> local_;                   // the World's bodies: fixed, owned and shadows, by id
+  std::vector<std::uint64_t> gids_;    // of local_'s bodies
+  std::vector<Placed> fixed_, owned_;  // owned_: this rank's moving bodies, by id
+  std::optional<RankGrid<T>> grid_;
+  T reach_ = 0;  // a body is sent as a shadow to the cells within its bound plus this
+  MpiBodyExchange<T> exchange_;
+  std::optional<LocalWorld> world_;
+  std::size_t shadows_ = 0;
+  std::size_t steps_ = 0;  // steps taken
+  bool stepped_ = false;  // the World holds state that owned_ has not taken back
+};
+
+}  // namespace gpusolve::rbd

@@ -1,0 +1,220 @@
+// DistributedWorld on the CPU backend over MPI (run by ctest with mpirun at
+// 1, 2 and 4 ranks): a pile of spheres and one of boxes match one World over
+// the whole scene; bodies that cross between ranks are neither lost nor
+// doubled; a NaN in one rank's body and a rank that throws are reported by
+// every rank.
+#define CATCH_CONFIG_RUNNER
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "catch_compat.hpp"
+#include "gpusolve/rbd/distributed/distributed_world.hpp"
+#include "test_rbd_scenes.hpp"
+
+using namespace rbd_test;
+
+namespace {
+
+int rank_of_world() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+int ranks_of_world() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+// The walls of a box [0, L] x [0, L] around a pile.
+template <class T>
+void walls(BodySet<T>& set, T lo, T hi) {
+  set.add_plane({1, 0, 0}, lo), set.add_plane({-1, 0, 0}, -hi);
+  set.add_plane({0, 1, 0}, lo), set.add_plane({0, -1, 0}, -hi);
+}
+
+// 6 x 6 x 4 spheres dropped by a little into a box: 144 spheres.
+BodySet<double> sphere_pile() {
+  auto set = pile<double>(6, 4, 0.5, 0.05);
+  walls<double>(set, -0.51, 6 * 1.05 + 0.525 + 0.51);
+  return set;
+}
+
+// 5 x 5 x 3 cubes of side 1, each turned a little, stacked loosely in a box: 75 boxes.
+BodySet<double> box_pile() {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> tilt(-0.1, 0.1);
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < 5; ++y)
+      for (int x = 0; x < 5; ++x)
+        set.add_box({x * 1.2, y * 1.2, 0.6 + z * 1.25}, {0.5, 0.5, 0.5}, 1.0,
+                    turn(tilt(rng), 0.6, 0.8, 0.0));
+  walls<double>(set, -0.7, 4 * 1.2 + 0.7);
+  return set;
+}
+
+// Rank 0 adds the whole scene, the others nothing: global id = index.
+BodySet<double> on_rank_zero(const BodySet<double>& scene) {
+  if (rank_of_world() == 0) return scene;
+  BodySet<double> none = scene;
+  none.records().clear();
+  return none;
+}
+
+struct Compared {
+  double position = 0, velocity = 0;  // largest difference from one World
+  std::size_t contacts = 0, contacts_single = 0;
+  double penetration = 0, penetration_single = 0;
+};
+
+// `steps` steps of `scene` distributed and as one World; the bodies compared on rank 0.
+template <class Method>
+Compared compare(const BodySet<double>& scene, const SolverSettings<double>& s, int steps) {
+  DistributedWorld<double, ConeFriction, Method> dist(MPI_COMM_WORLD, on_rank_zero(scene), s);
+  BodySet<double> whole = scene;
+  World<device::cpu, double, ConeFriction, Method> one(whole, s);
+  Compared c;
+  for (int k = 0; k < steps; ++k) {
+    const auto d = dist.step();
+    const auto o = one.step();
+    c.contacts = d.contacts, c.contacts_single = o.solver.contacts;
+    c.penetration = std::max(c.penetration, double(d.max_penetration));
+    c.penetration_single = std::max(c.penetration_single, double(o.max_penetration));
+  }
+  one.syncHost();
+  const std::vector<Body<double>> all = dist.gather(0);
+  if (rank_of_world() == 0) {
+    REQUIRE(all.size() == whole.size());
+    for (std::size_t i = 0; i < all.size(); ++i)
+      for (int a = 0; a < 3; ++a) {
+        c.position = std::max(c.position, std::fabs(all[i].pos[a] - whole[i].pos[a]));
+        c.velocity = std::max(c.velocity, std::fabs(all[i].v[a] - whole[i].v[a]));
+      }
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("distributed: a pile of spheres steps as one World does", "[distributed]") {
+  SolverSettings<double> s;
+  const Compared c = compare<AcceleratedJacobi<Gather>>(sphere_pile(), s, 60);
+  INFO("ranks " << ranks_of_world() << ": position " << c.position << ", velocity " << c.velocity << ", contacts "
+                << c.contacts << " / " << c.contacts_single << ", penetration " << c.penetration << " / "
+                << c.penetration_single);
+  CHECK(c.contacts == c.contacts_single);
+  CHECK(c.penetration == Approx(c.penetration_single).epsilon(1e-6));
+  if (ranks_of_world() == 1) {
+    CHECK(c.position == 0);  // one rank: the same sums in the same order
+  } else {
+    CHECK(c.position < 1e-9);  // only the order of the sums differs
+    CHECK(c.velocity < 1e-7);
+  }
+}
+
+TEST_CASE("distributed: a pile of boxes steps as one World does, under Jacobi too", "[distributed]") {
+  SolverSettings<double> s;
+  const Compared apgd = compare<AcceleratedJacobi<Gather>>(box_pile(), s, 60);
+  const Compared jacobi = compare<Jacobi<Gather>>(box_pile(), s, 60);
+  for (const Compared& c : {apgd, jacobi}) {
+    INFO("ranks " << ranks_of_world() << ": position " << c.position << ", velocity " << c.velocity << ", contacts "
+                  << c.contacts << " / " << c.contacts_single << ", penetration " << c.penetration << " / "
+                  << c.penetration_single);
+    CHECK(c.contacts == c.contacts_single);
+    CHECK(c.penetration == Approx(c.penetration_single).epsilon(1e-6));
+    CHECK(c.position < 1e-9);
+    CHECK(c.velocity < 1e-7);
+  }
+}
+
+TEST_CASE("distributed: bodies crossing between ranks are neither lost nor doubled", "[distributed]") {
+  // A row of spheres sliding without friction along x across every rank's
+  // cell (the grid spans their start; they keep going past it), a second row
+  // sliding back through them: in every step the count and the momentum hold.
+  BodySet<double> scene;
+  scene.add_plane({0, 0, 1}, 0);
+  for (int k = 0; k < 16; ++k) {
+    scene[scene.add_sphere({k * 1.5, 0.0, 0.5}, 0.5, 1.0)].v = {3.0, 0.0, 0.0};
+    scene[scene.add_sphere({k * 1.5, 2.0, 0.5}, 0.5, 2.0)].v = {-2.0, 0.2, 0.0};
+  }
+  SolverSettings<double> s;
+  s.friction = 0;
+  DistributedWorld<double> dist(MPI_COMM_WORLD, on_rank_zero(scene), s);
+  const double px = 16 * (3.0 * 1.0 - 2.0 * 2.0), py = 16 * 2.0 * 0.2;
+  for (int k = 0; k < 400; ++k) {
+    const auto st = dist.step();
+    REQUIRE(st.bodies == 32);
+    REQUIRE(st.momentum[0] == Approx(px).margin(1e-9));
+    REQUIRE(st.momentum[1] == Approx(py).margin(1e-9));
+  }
+  // They crossed: the owners changed.
+  std::size_t mine = dist.owned().size(), total = 0;
+  MPI_Allreduce(&mine, &total, 1, MPI_UNSIGNED_LONG, MPI_SUM, MPI_COMM_WORLD);
+  CHECK(total == 32);
+}
+
+TEST_CASE("distributed: a NaN in one rank's body is reported by every rank with its global id", "[distributed]") {
+  DistributedWorld<double> dist(MPI_COMM_WORLD, on_rank_zero(sphere_pile()), SolverSettings<double>{});
+  dist.step();
+  const std::uint64_t victim = 77;  // a sphere; whichever rank owns it
+  dist.modify(victim, [](Body<double>& b) { b.v[1] = std::nan(""); });
+  try {
+    dist.step();
+    FAIL("the step was taken");
+  } catch (const NonFiniteStateError& e) {
+    CHECK(e.body() == victim);
+    CHECK(e.field() == "v");
+    CHECK(e.step() == 1);
+  }
+}
+
+TEST_CASE("distributed: a rank that throws does not hang the others", "[distributed]") {
+  const int last = ranks_of_world() - 1;
+  RankAgreement agree(MPI_COMM_WORLD);
+  try {
+    agree.run([&] {
+      if (rank_of_world() == last) throw std::runtime_error("out of something");
+    });
+    FAIL("no rank threw");
+  } catch (const RankFailedError& e) {
+    CHECK(e.rank() == last);
+    CHECK(std::string(e.what()).find("out of something") != std::string::npos);
+  }
+  // Bad input on one rank: every rank gets the same InvalidBodyError, by global id.
+  BodySet<double> mine;
+  mine.add_sphere({double(rank_of_world()) * 3, 0, 0.5}, 0.5, 1.0);
+  if (rank_of_world() == last) mine[0].q = {2, 0, 0, 0};
+  try {
+    DistributedWorld<double> dist(MPI_COMM_WORLD, mine, SolverSettings<double>{});
+    FAIL("the world was made");
+  } catch (const InvalidBodyError& e) {
+    CHECK(e.body() == std::size_t(last));
+    CHECK(e.field() == "q");
+  }
+}
+
+TEST_CASE("distributed: a method that does not run distributed is refused on every rank", "[distributed]") {
+  CHECK_THROWS_AS((DistributedWorld<double, ConeFriction, ColouredGaussSeidel>(MPI_COMM_WORLD,
+                                                                                 on_rank_zero(sphere_pile()),
+                                                                                 SolverSettings<double>{})),
+                  UnsupportedError);
+}
+
+int main(int argc, char* argv[]) {
+  MPI_Init(&argc, &argv);
+  // Only rank 0 reports; every rank runs every test (they are collective).
+  if (rank_of_world() != 0) std::freopen("/dev/null", "w", stdout);
+  const int failed = Catch::Session().run(argc, argv);
+  int any = failed;
+  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Finalize();
+  return any;
+}

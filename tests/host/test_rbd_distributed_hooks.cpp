@@ -1,0 +1,146 @@
+// What a World offers a distributed world (rbd/distributed/), checked on one
+// rank of the CPU backend: shadows (BodyStatus::shadow) move but meet only
+// active bodies; a solve through a BodyExchange that adds nothing is the solve
+// without one, with one combine per iteration; the remembered contacts,
+// renumbered, keep the warm start; a method that does not run distributed says so.
+#include <cmath>
+#include <cstdint>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "catch_compat.hpp"
+#include "test_rbd_scenes.hpp"
+
+using namespace rbd_test;
+
+namespace {
+
+// A BodyExchange of one rank: the sums and reductions stay as they are; it
+// counts its calls.
+template <class T>
+struct CountingExchange final : BodyExchange<T> {
+  std::size_t combines = 0, reductions = 0, largest = 0;
+  void combine(T*, std::size_t, std::size_t bodies, stream_t) override {
+    ++combines;
+    largest = bodies > largest ? bodies : largest;
+  }
+  void reduce(T*, ExchangeOp, stream_t) override { ++reductions; }
+};
+
+// A small pile: 12 spheres in a box of planes, dropped by a little.
+BodySet<double> small_pile() {
+  auto set = pile<double>(2, 3, 0.5, 0.05);
+  const double L = 2 * 1.05 + 0.525 + 0.51;
+  set.add_plane({1, 0, 0}, -0.51), set.add_plane({-1, 0, 0}, -L);
+  set.add_plane({0, 1, 0}, -0.51), set.add_plane({0, -1, 0}, -L);
+  return set;
+}
+
+template <class W>
+std::vector<double> positions(W& w, BodySet<double>& set) {
+  w.syncHost();
+  std::vector<double> x;
+  for (const auto& b : set.records())
+    for (int c = 0; c < 3; ++c) x.push_back(b.pos[c]);
+  return x;
+}
+
+}  // namespace
+
+TEST_CASE("distributed hooks: a shadow moves but meets only active bodies", "[rbd_distributed]") {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);                               // 0
+  const std::size_t a = set.add_sphere({0, 0, 0.5}, 0.5, 1);   // 1: active, on the floor
+  const std::size_t b = set.add_sphere({0.9, 0, 0.5}, 0.5, 1);  // 2: shadow, touching a and the floor
+  const std::size_t c = set.add_sphere({1.8, 0, 0.5}, 0.5, 1);  // 3: shadow, touching b and the floor
+  set[b].status = shadow, set[c].status = shadow;
+  SolverSettings<double> s;
+  s.margin = 0.01;
+  World<device::cpu, double> w(set, s);
+  w.step();
+  auto& contacts = w.contacts();
+  std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (std::size_t k = 0; k < contacts.size(); ++k) pairs.insert({contacts.a(k), contacts.b(k)});
+  // a with the floor and a with b: never b with c, nor a shadow with the floor.
+  CHECK(pairs == std::set<std::pair<std::uint32_t, std::uint32_t>>{{std::uint32_t(a), 0u}, {std::uint32_t(a), std::uint32_t(b)}});
+  // The shadows move: c falls freely (nothing holds it), b is pushed by a only.
+  w.syncHost();
+  CHECK(set[c].v[2] == Approx(-9.81 * s.dt).epsilon(1e-9));
+  CHECK(set[b].pos[2] < 0.5);
+}
+
+TEST_CASE("distributed hooks: an exchange that adds nothing gives the solve without one", "[rbd_distributed]") {
+  auto run = [](auto method, bool exchanging, CountingExchange<double>& ex) {
+    auto set = small_pile();
+    SolverSettings<double> s;
+    s.max_iterations = 30, s.check_every = 10;
+    World<device::cpu, double, ConeFriction, decltype(method)> w(set, s);
+    if (exchanging) w.set_exchange(&ex);
+    std::size_t iterations = 0;
+    for (int i = 0; i < 40; ++i) iterations += w.step().solver.total_iterations;
+    return std::make_pair(positions(w, set), iterations);
+  };
+  CountingExchange<double> none, jacobi, apgd;
+  const auto [x_jacobi, it_jacobi] = run(Jacobi<Gather>{}, false, none);
+  const auto [y_jacobi, jt_jacobi] = run(Jacobi<Gather>{}, true, jacobi);
+  CHECK(y_jacobi == x_jacobi);
+  CHECK(jt_jacobi == it_jacobi);
+  const auto [x_apgd, it_apgd] = run(AcceleratedJacobi<Gather>{}, false, none);
+  const auto [y_apgd, jt_apgd] = run(AcceleratedJacobi<Gather>{}, true, apgd);
+  CHECK(y_apgd == x_apgd);
+  // One combine per iteration, and one for the warm start of each step that carries impulses.
+  CHECK(jacobi.combines >= it_jacobi);
+  CHECK(jacobi.combines <= it_jacobi + 40);
+  CHECK(jacobi.largest == small_pile().size());
+  CHECK(jacobi.reductions > 0);  // the residual checks
+  CHECK(apgd.reductions > jacobi.reductions);  // and the momentum's sums
+  CHECK(none.combines == 0);
+}
+
+TEST_CASE("distributed hooks: a method that does not run distributed says so", "[rbd_distributed]") {
+  auto set = small_pile();
+  CountingExchange<double> ex;
+  World<device::cpu, double, ConeFriction, ColouredGaussSeidel> gs(set, SolverSettings<double>{});
+  CHECK_THROWS_AS(gs.set_exchange(&ex), UnsupportedError);
+  gs.set_exchange(nullptr);  // none is always fine
+  World<device::cpu, double, ConeFriction, Jacobi<Atomic>> atomic(set, SolverSettings<double>{});
+  CHECK_THROWS_AS(atomic.set_exchange(&ex), UnsupportedError);
+}
+
+TEST_CASE("distributed hooks: remembered contacts, renumbered, keep the warm start", "[rbd_distributed]") {
+  // Two copies of one settling pile, solved short of convergence (so the
+  // impulses carried matter); after 10 steps the second gains a far-away
+  // sphere in front of its bodies (every index moves up by one), and its
+  // remembered contacts are renumbered. Its next steps repeat the first's;
+  // without the renumbering they do not.
+  SolverSettings<double> s;
+  s.max_iterations = 4, s.check_every = 4;
+  auto run = [&](bool renumber) {
+    auto reference = small_pile(), moved = small_pile();
+    World<device::cpu, double> w_ref(reference, s), w(moved, s);
+    w_ref.advance(10), w.advance(10);
+    w.syncHost();
+    auto records = moved.records();
+    BodySet<double> far;
+    far.add_fixed_sphere({100, 100, 100}, 0.5);
+    records.insert(records.begin(), far[0]);
+    moved.records() = records;
+    w.manager().syncDeviceFull();
+    if (renumber) {
+      RememberedContacts<double> kept = w.remembered_contacts();
+      REQUIRE(!kept.keys.empty());
+      for (std::uint64_t& key : kept.keys) key = pair_key(pair_a(key) + 1, pair_b(key) + 1);
+      w.remember(kept);
+    }
+    w_ref.advance(5), w.advance(5);
+    const auto x_ref = positions(w_ref, reference);
+    auto x = positions(w, moved);
+    x.erase(x.begin(), x.begin() + 3);
+    double worst = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) worst = std::fmax(worst, std::fabs(x[k] - x_ref[k]));
+    return worst;
+  };
+  CHECK(run(true) < 1e-12);
+  CHECK(run(false) > 1e-6);
+}
