@@ -1,8 +1,9 @@
-// DistributedWorld on the CPU backend over MPI (run by ctest with mpirun at
-// 1, 2 and 4 ranks): piles of spheres, of boxes and of capsules match one
-// World over the whole scene; bodies that cross between ranks are neither lost nor
-// doubled; a NaN in one rank's body and a rank that throws are reported by
-// every rank.
+// DistributedWorld over MPI, on the CPU backend (run by ctest with mpirun at
+// 1, 2 and 4 ranks) and, compiled again by test_distributed_world_gpu.cu with
+// GPUSOLVE_TEST_GPU, on the GPU (ranks sharing it): piles of spheres, of boxes
+// and of capsules match one World over the whole scene; bodies that cross
+// between ranks are neither lost nor doubled; a NaN in one rank's body and a
+// rank that throws are reported by every rank.
 #define CATCH_CONFIG_RUNNER
 #include <mpi.h>
 
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <random>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "catch_compat.hpp"
@@ -18,6 +20,13 @@
 #include "test_rbd_scenes.hpp"
 
 using namespace rbd_test;
+
+#if defined(GPUSOLVE_TEST_GPU)
+#include <cuda_runtime_api.h>
+using TestDevice = device::gpu;
+#else
+using TestDevice = device::cpu;
+#endif
 
 namespace {
 
@@ -91,9 +100,9 @@ struct Compared {
 // `steps` steps of `scene` distributed and as one World; the bodies compared on rank 0.
 template <class Method>
 Compared compare(const BodySet<double>& scene, const SolverSettings<double>& s, int steps) {
-  DistributedWorld<double, ConeFriction, Method> dist(MPI_COMM_WORLD, on_rank_zero(scene), s);
+  DistributedWorld<TestDevice, double, ConeFriction, Method> dist(MPI_COMM_WORLD, on_rank_zero(scene), s);
   BodySet<double> whole = scene;
-  World<device::cpu, double, ConeFriction, Method> one(whole, s);
+  World<TestDevice, double, ConeFriction, Method> one(whole, s);
   Compared c;
   for (int k = 0; k < steps; ++k) {
     const auto d = dist.step();
@@ -125,8 +134,9 @@ TEST_CASE("distributed: a pile of spheres steps as one World does", "[distribute
                 << c.penetration_single);
   CHECK(c.contacts == c.contacts_single);
   CHECK(c.penetration == Approx(c.penetration_single).epsilon(1e-6));
-  if (ranks_of_world() == 1) {
-    CHECK(c.position == 0);  // one rank: the same sums in the same order
+  if (ranks_of_world() == 1 && std::is_same_v<TestDevice, device::cpu>) {
+    CHECK(c.position == 0);  // one rank: the same sums in the same order (on the GPU one World's
+                             // solve is one persistent kernel, a distributed one launches)
   } else {
     CHECK(c.position < 1e-9);  // only the order of the sums differs
     CHECK(c.velocity < 1e-7);
@@ -154,7 +164,7 @@ TEST_CASE("distributed: a pile of capsules steps as one World does", "[distribut
                 << c.contacts << " / " << c.contacts_single << ", penetration " << c.penetration << " / "
                 << c.penetration_single);
   CHECK(c.contacts == c.contacts_single);
-  CHECK(c.contacts > 48);  // they landed on the floor and on each other
+  CHECK(c.contacts >= 48);  // landed: 32 points on the floor, 16 crossings of the first two layers
   CHECK(c.penetration == Approx(c.penetration_single).epsilon(1e-6));
   CHECK(c.position < 1e-9);
   CHECK(c.velocity < 1e-7);
@@ -172,7 +182,7 @@ TEST_CASE("distributed: bodies crossing between ranks are neither lost nor doubl
   }
   SolverSettings<double> s;
   s.friction = 0;
-  DistributedWorld<double> dist(MPI_COMM_WORLD, on_rank_zero(scene), s);
+  DistributedWorld<TestDevice, double> dist(MPI_COMM_WORLD, on_rank_zero(scene), s);
   const double px = 16 * (3.0 * 1.0 - 2.0 * 2.0), py = 16 * 2.0 * 0.2;
   for (int k = 0; k < 400; ++k) {
     const auto st = dist.step();
@@ -187,7 +197,7 @@ TEST_CASE("distributed: bodies crossing between ranks are neither lost nor doubl
 }
 
 TEST_CASE("distributed: a NaN in one rank's body is reported by every rank with its global id", "[distributed]") {
-  DistributedWorld<double> dist(MPI_COMM_WORLD, on_rank_zero(sphere_pile()), SolverSettings<double>{});
+  DistributedWorld<TestDevice, double> dist(MPI_COMM_WORLD, on_rank_zero(sphere_pile()), SolverSettings<double>{});
   dist.step();
   const std::uint64_t victim = 77;  // a sphere; whichever rank owns it
   dist.modify(victim, [](Body<double>& b) { b.v[1] = std::nan(""); });
@@ -218,7 +228,7 @@ TEST_CASE("distributed: a rank that throws does not hang the others", "[distribu
   mine.add_sphere({double(rank_of_world()) * 3, 0, 0.5}, 0.5, 1.0);
   if (rank_of_world() == last) mine[0].q = {2, 0, 0, 0};
   try {
-    DistributedWorld<double> dist(MPI_COMM_WORLD, mine, SolverSettings<double>{});
+    DistributedWorld<TestDevice, double> dist(MPI_COMM_WORLD, mine, SolverSettings<double>{});
     FAIL("the world was made");
   } catch (const InvalidBodyError& e) {
     CHECK(e.body() == std::size_t(last));
@@ -227,7 +237,7 @@ TEST_CASE("distributed: a rank that throws does not hang the others", "[distribu
 }
 
 TEST_CASE("distributed: a method that does not run distributed is refused on every rank", "[distributed]") {
-  CHECK_THROWS_AS((DistributedWorld<double, ConeFriction, ColouredGaussSeidel>(MPI_COMM_WORLD,
+  CHECK_THROWS_AS((DistributedWorld<TestDevice, double, ConeFriction, ColouredGaussSeidel>(MPI_COMM_WORLD,
                                                                                  on_rank_zero(sphere_pile()),
                                                                                  SolverSettings<double>{})),
                   UnsupportedError);
@@ -235,6 +245,17 @@ TEST_CASE("distributed: a method that does not run distributed is refused on eve
 
 int main(int argc, char* argv[]) {
   MPI_Init(&argc, &argv);
+#if defined(GPUSOLVE_TEST_GPU)
+  int gpus = 0;
+  if (cudaGetDeviceCount(&gpus) != cudaSuccess || gpus == 0) {
+    if (rank_of_world() == 0) std::printf("SKIPPED: the distributed GPU tests need a CUDA GPU; none is usable here\n");
+    MPI_Finalize();
+    return 77;
+  }
+  cudaDeviceProp prop{};
+  if (rank_of_world() == 0 && cudaGetDeviceProperties(&prop, 0) == cudaSuccess)
+    std::printf("gpusolve distributed tests on %s, %d ranks sharing it\n", prop.name, ranks_of_world());
+#endif
   // Only rank 0 reports; every rank runs every test (they are collective).
   if (rank_of_world() != 0) std::freopen("/dev/null", "w", stdout);
   const int failed = Catch::Session().run(argc, argv);

@@ -21,7 +21,12 @@ namespace {
 template <class T>
 struct CountingExchange final : BodyExchange<T> {
   std::size_t combines = 0, reductions = 0, largest = 0;
-  void combine(T*, std::size_t, std::size_t bodies, stream_t) override {
+  std::vector<T> store;
+  VectorD2View<T> sums(std::size_t bodies) override {
+    store.resize(6 * bodies);
+    return {store.data(), bodies, 6, bodies};
+  }
+  void combine(std::size_t bodies, stream_t) override {
     ++combines;
     largest = bodies > largest ? bodies : largest;
   }

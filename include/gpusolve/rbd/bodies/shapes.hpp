@@ -21,10 +21,12 @@ namespace gpusolve::rbd {
 // A shadow is the copy of a body that another rank owns (rbd/distributed/): it
 // moves as an active body does, but meets only active bodies, so that a pair
 // of two shadows, or of a shadow and a fixed body, is left to the ranks that own them.
-enum BodyStatus : std::uint8_t { active = 0, fixed = 1, removed = 2, shadow = 3 };
+// The moving statuses come first, so that whether a body moves is one
+// comparison, as it was before shadows (docs/distributed.md: what it costs).
+enum BodyStatus : std::uint8_t { active = 0, shadow = 1, fixed = 2, removed = 3 };
 
 // Whether a body of this status moves (active bodies and shadows).
-GPUSOLVE_HD inline bool moves(std::uint8_t status) { return status == active || status == shadow; }
+GPUSOLVE_HD inline bool moves(std::uint8_t status) { return status <= shadow; }
 
 // Every kind, in the order of their values: the one list every dispatch is
 // generated from.

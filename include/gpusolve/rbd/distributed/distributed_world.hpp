@@ -22,6 +22,7 @@
 #include "gpusolve/rbd/distributed/mpi_body_exchange.hpp"
 #include "gpusolve/rbd/distributed/rank_agreement.hpp"
 #include "gpusolve/rbd/distributed/rank_grid.hpp"
+#include "gpusolve/rbd/distributed/rank_messages.hpp"
 #include "gpusolve/rbd/solvers/friction_anchors.hpp"
 #include "gpusolve/rbd/world.hpp"
 
@@ -37,7 +38,8 @@ struct DistributedStats {
   T kinetic_energy = 0;         // of the moving bodies, each counted once
   std::array<T, 3> momentum{};  // sum of m v over the moving bodies
   std::size_t shadows = 0;      // shadow copies held, over the ranks
-  double seconds_exchange = 0;  // this rank: bodies moved and shadows sent, plus the solve's exchanges
+  double seconds_exchange = 0;  // this rank: bodies and remembered contacts moved, shadows sent, the
+                                // World's bodies rebuilt and read back, plus the solve's exchanges
   double seconds_step = 0;      // this rank: the World's step, the solve's exchanges included
 };
 
@@ -55,17 +57,18 @@ struct DistributedStats {
 // World over the whole scene, and the warm start follows the renumbering.
 // Global ids: the bodies each rank passes in, numbered rank by rank.
 //
-// Runs on the CPU backend (the device exchange is the multi-GPU issue's);
-// methods that run distributed: World's solves_distributed (jacobi, apgd
+// On either backend: each rank's World runs where its bodies live (ranks may
+// share a GPU); the bodies and the solve's sums travel through host memory
+// (MpiBodyExchange). Methods that run distributed: World's solves_distributed (jacobi, apgd
 // with Gather or UpdateCache sums). A compound is refused by body. Every rank
 // passes the same settings and the same materials. A rank that throws (a body
 // that is not valid or not finite, named by its global id) makes every rank
 // throw the same error (RankAgreement).
-template <class T = float, class Model = ConeFriction, class Method = AcceleratedJacobi<Gather>,
-          ShapeMask Shapes = all_shapes>
+template <class Device = device::cpu, class T = float, class Model = ConeFriction,
+          class Method = AcceleratedJacobi<Gather>, ShapeMask Shapes = all_shapes>
 class DistributedWorld {
  public:
-  using LocalWorld = World<device::cpu, T, Model, Method, Shapes>;
+  using LocalWorld = World<Device, T, Model, Method, Shapes>;
   using Vec = std::array<T, 3>;
 
   // `mine`: the bodies this rank adds (all on one rank and none on the
@@ -73,7 +76,7 @@ class DistributedWorld {
   // lo and hi are given.
   DistributedWorld(MPI_Comm comm, const BodySet<T>& mine, const SolverSettings<T>& settings,
                    std::optional<std::pair<Vec, Vec>> box = std::nullopt)
-      : comm_(comm), agree_(comm), local_(mine), exchange_(comm) {
+      : comm_(comm), agree_(comm), messages_(comm), local_(mine), exchange_(comm) {
     MPI_Comm_rank(comm, &rank_);
     MPI_Comm_size(comm, &ranks_);
     local_.records().clear();
@@ -98,14 +101,18 @@ class DistributedWorld {
     collect_owned();
     std::vector<std::vector<Remembered>> to = remembered_by_rank();
     owned_ = send_to_owners(owned_);
-    rebuild(all_to_all(to));
+    rebuild(messages_.all_to_all(to));
     ++steps_;
     const auto exchanged = std::chrono::steady_clock::now();
     exchange_.take_seconds();
     const StepStats<T> st = world_->step();
     DistributedStats<T> out;
     out.seconds_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchanged).count();
-    out.seconds_exchange = std::chrono::duration<double>(exchanged - start).count() + exchange_.take_seconds();
+    const auto back = std::chrono::steady_clock::now();
+    collect_owned();
+    out.seconds_exchange = std::chrono::duration<double>(exchanged - start).count() +
+                           std::chrono::duration<double>(std::chrono::steady_clock::now() - back).count() +
+                           exchange_.take_seconds();
     out.local = st;
     figures(st, out);
     return out;
@@ -137,7 +144,7 @@ class DistributedWorld {
   // (empty elsewhere): moving bodies from their owners, fixed ones as added.
   std::vector<Body<T>> gather(int root = 0) {
     collect_owned();
-    std::vector<Placed> all = gather_to(owned_, root);
+    std::vector<Placed> all = messages_.gather_to(owned_, root);
     if (rank_ != root) return {};
     all.insert(all.end(), fixed_.begin(), fixed_.end());
     std::sort(all.begin(), all.end(), [](const Placed& a, const Placed& b) { return a.gid < b.gid; });
@@ -200,29 +207,7 @@ class DistributedWorld {
     std::vector<Placed> mine;
     for (const Placed& p : added)
       if (p.body.status == fixed) mine.push_back(p);
-    return all_gather(mine);
-  }
-
-  std::vector<Placed> all_gather(const std::vector<Placed>& mine) const {
-    const int bytes = int(mine.size() * sizeof(Placed));
-    std::vector<int> counts(ranks_), offsets(ranks_);
-    MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
-    int total = 0;
-    for (int r = 0; r < ranks_; ++r) offsets[r] = total, total += counts[r];
-    std::vector<Placed> all(std::size_t(total) / sizeof(Placed));
-    MPI_Allgatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, comm_);
-    return all;
-  }
-
-  std::vector<Placed> gather_to(const std::vector<Placed>& mine, int root) const {
-    const int bytes = int(mine.size() * sizeof(Placed));
-    std::vector<int> counts(ranks_), offsets(ranks_);
-    MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
-    int total = 0;
-    for (int r = 0; r < ranks_; ++r) offsets[r] = total, total += counts[r];
-    std::vector<Placed> all(rank_ == root ? std::size_t(total) / sizeof(Placed) : 0);
-    MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, root, comm_);
-    return all;
+    return messages_.all_gather(mine);
   }
 
   // The ranks along x and y (a pile is tall in z): MPI_Dims_create with z at 1.
@@ -264,28 +249,9 @@ class DistributedWorld {
   std::vector<Placed> send_to_owners(const std::vector<Placed>& bodies) const {
     std::vector<std::vector<Placed>> to(ranks_);
     for (const Placed& p : bodies) to[grid_->owner(p.body.pos)].push_back(p);
-    std::vector<Placed> mine = all_to_all(to);
+    std::vector<Placed> mine = messages_.all_to_all(to);
     std::sort(mine.begin(), mine.end(), [](const Placed& a, const Placed& b) { return a.gid < b.gid; });
     return mine;
-  }
-
-  // Sends to[r] to rank r; returns what came, rank by rank.
-  template <class E>
-  std::vector<E> all_to_all(const std::vector<std::vector<E>>& to) const {
-    std::vector<int> out_counts(ranks_), out_offsets(ranks_), in_counts(ranks_), in_offsets(ranks_);
-    std::vector<E> out;
-    for (int r = 0; r < ranks_; ++r) {
-      out_offsets[r] = int(out.size() * sizeof(E));
-      out_counts[r] = int(to[r].size() * sizeof(E));
-      out.insert(out.end(), to[r].begin(), to[r].end());
-    }
-    MPI_Alltoall(out_counts.data(), 1, MPI_INT, in_counts.data(), 1, MPI_INT, comm_);
-    int total = 0;
-    for (int r = 0; r < ranks_; ++r) in_offsets[r] = total, total += in_counts[r];
-    std::vector<E> in(std::size_t(total) / sizeof(E));
-    MPI_Alltoallv(out.data(), out_counts.data(), out_offsets.data(), MPI_BYTE, in.data(), in_counts.data(),
-                  in_offsets.data(), MPI_BYTE, comm_);
-    return in;
   }
 
   // The owned bodies' state from the World after its last step.
@@ -351,7 +317,7 @@ class DistributedWorld {
           to[r].push_back(owned_[k]);
           sent[r].push_back(k);
         }
-    const std::vector<Placed> came = all_to_all(to);
+    const std::vector<Placed> came = messages_.all_to_all(to);
     // The shadows arrive rank by rank, each rank's in the order it sent them.
     std::vector<int> from;
     {
@@ -407,17 +373,15 @@ class DistributedWorld {
     shadows_ = came.size();
     world_->manager().syncDeviceFull();
     remember(moved);
-    exchange_.share(std::move(shared));
+    exchange_.share(shared);
     stepped_ = true;
   }
 
   // The step's figures over the ranks: owned bodies only, each contact once.
-  void figures(const StepStats<T>& st, DistributedStats<T>& out) {
-    world_->syncHost();
+  void figures(const StepStats<T>& st, DistributedStats<T>& out) const {
     double sums[6] = {0, 0, 0, 0, 0, 0};  // bodies, energy, momentum, shadows
-    for (std::size_t k = 0; k < local_.size(); ++k) {
-      const Body<T>& b = local_[k];
-      if (b.status != active) continue;
+    for (const Placed& p : owned_) {
+      const Body<T>& b = p.body;
       sums[0] += 1;
       sums[1] += kinetic_energy(b);
       for (int a = 0; a < 3; ++a) sums[2 + a] += double(b.v[a]) / double(b.inv_mass);
@@ -454,12 +418,13 @@ class DistributedWorld {
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
   RankAgreement agree_;
+  RankMessages messages_;
   BodySet<T> local_;                   // the World's bodies: fixed, owned and shadows, by id
   std::vector<std::uint64_t> gids_;    // of local_'s bodies
   std::vector<Placed> fixed_, owned_;  // owned_: this rank's moving bodies, by id
   std::optional<RankGrid<T>> grid_;
   T reach_ = 0;  // a body is sent as a shadow to the cells within its bound plus this
-  MpiBodyExchange<T> exchange_;
+  MpiBodyExchange<Device, T> exchange_;
   std::optional<LocalWorld> world_;
   std::size_t shadows_ = 0;
   std::size_t steps_ = 0;  // steps taken

@@ -1,14 +1,20 @@
 // MpiBodyExchange: a BodyExchange over MPI between the ranks of a distributed
-// world (host memory: the CPU backend).
+// world, on either backend: the shared bodies' values are packed where the
+// bodies live and travel through host memory (MPI_Alltoallv).
 #pragma once
 
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
 #include <mpi.h>
 
+#include "gpusolve/container/vector_d1.hpp"
+#include "gpusolve/core/config.hpp"
+#include "gpusolve/core/launch.hpp"
+#include "gpusolve/rbd/execution/backend.hpp"
 #include "gpusolve/rbd/execution/body_exchange.hpp"
 
 namespace gpusolve::rbd {
@@ -24,6 +30,34 @@ template <>
 inline MPI_Datatype mpi_type<double>() {
   return MPI_DOUBLE;
 }
+
+inline constexpr std::size_t exchanged_values = 6;  // dv, dw
+
+// Entry k of a list of bodies: its six sums into out[6k, 6k + 6).
+template <class T>
+struct PackSums {
+  VectorD2View<T> sums;
+  const std::uint32_t* bodies;
+  T* out;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    for (std::size_t c = 0; c < exchanged_values; ++c) out[k * exchanged_values + c] = sums(bodies[k], c);
+  }
+};
+
+// Entry k of a list of bodies: in[6k, 6k + 6) added to its sums, or in their place.
+template <class T>
+struct UnpackSums {
+  VectorD2View<T> sums;
+  const std::uint32_t* bodies;
+  const T* in;
+  bool add;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    for (std::size_t c = 0; c < exchanged_values; ++c) {
+      const T x = in[k * exchanged_values + c];
+      sums(bodies[k], c) = add ? sums(bodies[k], c) + x : x;
+    }
+  }
+};
 }  // namespace detail
 
 // Which local bodies a rank shares with each other rank, set after every
@@ -35,39 +69,52 @@ struct SharedBodies {
 };
 
 // combine(): every shadow's sums go to its owner, which adds them to its own
-// in the order of the ranks (deterministic), and the totals go back to every
-// rank that holds a shadow of the body: two all-to-all exchanges of six values
-// per shared body. reduce(): MPI_Allreduce. Counts the seconds it spends.
-template <class T>
+// in the order of the ranks (a launch per rank: deterministic), and the totals
+// go back to every rank that holds a shadow of the body: two all-to-all
+// exchanges of six values per shared body. reduce(): MPI_Allreduce. Counts
+// the seconds it spends.
+template <class Device, class T>
 class MpiBodyExchange final : public BodyExchange<T> {
  public:
   explicit MpiBodyExchange(MPI_Comm comm) : comm_(comm) {
     MPI_Comm_size(comm, &ranks_);
-    shared_.shadows.assign(ranks_, {});
-    shared_.copies.assign(ranks_, {});
+    share({std::vector<std::vector<std::size_t>>(ranks_), std::vector<std::vector<std::size_t>>(ranks_)});
   }
 
-  void share(SharedBodies shared) { shared_ = std::move(shared); }
+  // The bodies shared from now on (after an exchange of bodies).
+  void share(const SharedBodies& shared) {
+    shadows_ = List(shared.shadows);
+    copies_ = List(shared.copies);
+  }
 
-  void combine(T* sums, std::size_t pitch, std::size_t, stream_t) override {
+  VectorD2View<T> sums(std::size_t bodies) override {
+    if (store_.size_x() < exchanged * bodies) store_.resize(exchanged * bodies);
+    return {store_.data(), bodies, exchanged, bodies};
+  }
+
+  void combine(std::size_t bodies, stream_t stream) override {
     const auto start = std::chrono::steady_clock::now();
-    // Partial sums of the shadows up to their owners ...
-    pack(sums, pitch, shared_.shadows, out_, out_counts_, out_offsets_);
-    layout(shared_.copies, in_, in_counts_, in_offsets_);
-    all_to_all();
-    unpack(sums, pitch, shared_.copies, true);
+    const VectorD2View<T> s = sums(bodies);
+    // Partial sums of the shadows up to their owners, added rank by rank ...
+    send(s, shadows_, copies_, stream);
+    for (int r = 0; r < ranks_; ++r)
+      if (const std::size_t n = copies_.count(r))
+        launch(Device{}, n,
+               detail::UnpackSums<T>{s, copies_.bodies.data() + copies_.first[r],
+                                     in_.data() + exchanged * copies_.first[r], true},
+               stream);
     // ... and the owners' totals back to every shadow.
-    pack(sums, pitch, shared_.copies, out_, out_counts_, out_offsets_);
-    layout(shared_.shadows, in_, in_counts_, in_offsets_);
-    all_to_all();
-    unpack(sums, pitch, shared_.shadows, false);
+    send(s, copies_, shadows_, stream);
+    if (const std::size_t n = shadows_.total())
+      launch(Device{}, n, detail::UnpackSums<T>{s, shadows_.bodies.data(), in_.data(), false}, stream);
     seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
-  void reduce(T* value, ExchangeOp op, stream_t) override {
+  void reduce(T* value, ExchangeOp op, stream_t stream) override {
     const auto start = std::chrono::steady_clock::now();
-    MPI_Allreduce(MPI_IN_PLACE, value, 1, detail::mpi_type<T>(), op == ExchangeOp::maximum ? MPI_MAX : MPI_SUM,
-                  comm_);
+    T x = detail::read_back<Device>(value, 0, stream);
+    MPI_Allreduce(MPI_IN_PLACE, &x, 1, detail::mpi_type<T>(), op == ExchangeOp::maximum ? MPI_MAX : MPI_SUM, comm_);
+    detail::copy_with_host<Device>(value, &x, 1, false, stream);
     seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
@@ -79,49 +126,53 @@ class MpiBodyExchange final : public BodyExchange<T> {
   }
 
  private:
-  static constexpr std::size_t values = 6;  // dv, dw
+  static constexpr std::size_t exchanged = detail::exchanged_values;
 
-  void pack(const T* sums, std::size_t pitch, const std::vector<std::vector<std::size_t>>& lists, std::vector<T>& out,
-            std::vector<int>& counts, std::vector<int>& offsets) const {
-    layout(lists, out, counts, offsets);
-    for (int r = 0; r < ranks_; ++r)
-      for (std::size_t k = 0; k < lists[r].size(); ++k)
-        for (std::size_t c = 0; c < values; ++c)
-          out[std::size_t(offsets[r]) + k * values + c] = sums[c * pitch + lists[r][k]];
-  }
-  // What came, rank by rank, into the rows of `lists`: added to an owner's
-  // own sums (`add`), or in place of a shadow's.
-  void unpack(T* sums, std::size_t pitch, const std::vector<std::vector<std::size_t>>& lists, bool add) const {
-    for (int r = 0; r < ranks_; ++r)
-      for (std::size_t k = 0; k < lists[r].size(); ++k)
-        for (std::size_t c = 0; c < values; ++c) {
-          T& x = sums[c * pitch + lists[r][k]];
-          const T y = in_[std::size_t(in_offsets_[r]) + k * values + c];
-          x = add ? x + y : y;
-        }
-  }
-  void layout(const std::vector<std::vector<std::size_t>>& lists, std::vector<T>& buffer, std::vector<int>& counts,
-              std::vector<int>& offsets) const {
-    counts.assign(ranks_, 0);
-    offsets.assign(ranks_, 0);
-    int total = 0;
-    for (int r = 0; r < ranks_; ++r) {
-      counts[r] = int(lists[r].size() * values);
-      offsets[r] = total;
-      total += counts[r];
+  // Local body indices grouped by rank: rank r's at [first[r], first[r + 1])
+  // of `bodies`, on the backend.
+  struct List {
+    VectorD1<std::uint32_t, device_is<Device>> bodies;
+    std::vector<std::size_t> first{0};
+    List() = default;
+    explicit List(const std::vector<std::vector<std::size_t>>& by_rank) {
+      std::vector<std::uint32_t> flat;
+      for (const auto& l : by_rank) {
+        flat.insert(flat.end(), l.begin(), l.end());
+        first.push_back(flat.size());
+      }
+      bodies.resize(flat.size());
+      detail::copy_with_host<Device>(bodies.data(), flat.data(), flat.size(), false, stream_t{});
     }
-    buffer.resize(std::size_t(total));
-  }
-  void all_to_all() {
-    MPI_Alltoallv(out_.data(), out_counts_.data(), out_offsets_.data(), detail::mpi_type<T>(), in_.data(),
-                  in_counts_.data(), in_offsets_.data(), detail::mpi_type<T>(), comm_);
+    std::size_t count(int r) const { return first[r + 1] - first[r]; }
+    std::size_t total() const { return first.back(); }
+  };
+
+  // The values of `from`'s bodies to their ranks; those of `into`'s bodies
+  // arrive in in_ (device) in its order.
+  void send(const VectorD2View<T>& s, const List& from, const List& into, stream_t stream) {
+    const std::size_t out_n = exchanged * from.total(), in_n = exchanged * into.total();
+    if (packed_.size_x() < out_n) packed_.resize(out_n);
+    if (in_.size_x() < in_n) in_.resize(in_n);
+    if (from.total() != 0)
+      launch(Device{}, from.total(), detail::PackSums<T>{s, from.bodies.data(), packed_.data()}, stream);
+    out_host_.resize(out_n), in_host_.resize(in_n);
+    detail::copy_with_host<Device>(out_host_.data(), packed_.data(), out_n, true, stream);
+    std::vector<int> out_counts(ranks_), out_offsets(ranks_), in_counts(ranks_), in_offsets(ranks_);
+    for (int r = 0; r < ranks_; ++r) {
+      out_counts[r] = int(exchanged * from.count(r)), out_offsets[r] = int(exchanged * from.first[r]);
+      in_counts[r] = int(exchanged * into.count(r)), in_offsets[r] = int(exchanged * into.first[r]);
+    }
+    MPI_Alltoallv(out_host_.data(), out_counts.data(), out_offsets.data(), detail::mpi_type<T>(), in_host_.data(),
+                  in_counts.data(), in_offsets.data(), detail::mpi_type<T>(), comm_);
+    detail::copy_with_host<Device>(in_.data(), in_host_.data(), in_n, false, stream);
   }
 
   MPI_Comm comm_;
   int ranks_ = 1;
-  SharedBodies shared_;
-  std::vector<T> out_, in_;
-  std::vector<int> out_counts_, out_offsets_, in_counts_, in_offsets_;
+  List shadows_, copies_;
+  VectorD1<T, device_is<Device>> store_;           // sums(): bodies x 6, one row of bodies per value
+  VectorD1<T, device_is<Device>> packed_, in_;     // the values sent and received, on the backend
+  std::vector<T> out_host_, in_host_;              // the same on the host, for MPI
   double seconds_ = 0;
 };
 

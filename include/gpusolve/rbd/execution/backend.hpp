@@ -11,6 +11,7 @@
 #include "gpusolve/core/device.hpp"
 #include "gpusolve/core/error.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <type_traits>
 
@@ -47,6 +48,26 @@ U read_back(const U* p, std::size_t index, stream_t stream) {
 #endif
   }
   return value;
+}
+
+// Copies `count` elements between memory owned by Device and the host:
+// `to_host`, from the backend's src into the host's dst, else the other way;
+// after the stream's work, and the host waits for it.
+template <class Device, class U>
+void copy_with_host(U* dst, const U* src, std::size_t count, bool to_host, stream_t stream) {
+  if (count == 0) return;
+  if constexpr (std::is_same_v<Device, device::cpu>) {
+    (void)to_host, (void)stream;
+    std::copy(src, src + count, dst);
+  } else {
+#if GPUSOLVE_HAS_CUDART
+    GPUSOLVE_CUDA_CHECK(cudaMemcpyAsync(dst, src, count * sizeof(U),
+                                        to_host ? cudaMemcpyDeviceToHost : cudaMemcpyHostToDevice, stream));
+    GPUSOLVE_CUDA_CHECK(cudaStreamSynchronize(stream));
+#else
+    throw UnsupportedError("gpusolve: copying to or from device memory needs the CUDA runtime");
+#endif
+  }
 }
 
 }  // namespace gpusolve::rbd::detail

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 
+#include "gpusolve/container/vector_view.hpp"
 #include "gpusolve/core/launch.hpp"
 
 namespace gpusolve::rbd {
@@ -16,11 +17,12 @@ template <class T>
 class BodyExchange {
  public:
   virtual ~BodyExchange() = default;
-  // `sums` (bodies x 6 values, row r at sums + r * pitch, in the backend's
-  // memory): each body's velocity changes of this iteration (dv, then dw), as
-  // this rank's contacts made them. Afterwards every rank that holds the body
-  // holds its sum over all ranks.
-  virtual void combine(T* sums, std::size_t pitch, std::size_t bodies, stream_t stream) = 0;
+  // combine()'s store, kept by the exchange: `bodies` x 6 values in the
+  // backend's memory, each body's velocity changes of this iteration (dv, then dw).
+  virtual VectorD2View<T> sums(std::size_t bodies) = 0;
+  // The store holds each body's changes as this rank's contacts made them;
+  // afterwards every rank that holds the body holds their sum over all ranks.
+  virtual void combine(std::size_t bodies, stream_t stream) = 0;
   // *value (in the backend's memory), this rank's reduction: its `op` over the ranks.
   virtual void reduce(T* value, ExchangeOp op, stream_t stream) = 0;
 };

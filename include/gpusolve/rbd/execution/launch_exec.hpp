@@ -19,7 +19,7 @@ namespace gpusolve::rbd::detail {
 // was given, whose kept buffers a program that is captured into a graph must
 // have reserved (reserve_reduce). With an `exchange` (a distributed solve,
 // never captured), every reduction is also reduced over the ranks, and
-// combine(sums, pitch, bodies) sums the bodies' velocity changes over them.
+// combine(bodies) sums the bodies' velocity changes in exchange->sums() over them.
 template <class Device, class T>
 struct LaunchExec {
   stream_t stream;
@@ -44,7 +44,7 @@ struct LaunchExec {
   void sum(std::size_t n, const F& f, T* out) const {
     reduce(n, f, T(0), PlusOp{}, out);
   }
-  void combine(T* sums, std::size_t pitch, std::size_t bodies) const { exchange->combine(sums, pitch, bodies, stream); }
+  void combine(std::size_t bodies) const { exchange->combine(bodies, stream); }
   void scan(const std::uint32_t* in, std::uint32_t* out, std::size_t n) const {
     algorithms->inclusive_sum(in, out, n, stream);
   }

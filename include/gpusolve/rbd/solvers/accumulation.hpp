@@ -152,7 +152,6 @@ struct CacheApply {
   ReduceVelocityUpdates<T> pass;  // pass.o is set per pass
   std::size_t passes, entries, bodies;
   ToBodies to_bodies;
-  VectorD2View<T> body_sums;  // bodies x 6: a distributed solve's (CacheStore::exchange_sums)
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
@@ -167,13 +166,14 @@ struct CacheApply {
     e.each(bodies, to_bodies);
   }
   // A distributed solve: the sums of this rank's contacts, combined over the
-  // ranks that hold each body, then added.
+  // ranks that hold each body (in the exchange's store), then added.
   template <class E>
   void combined(const E& e) const {
-    e.each(bodies, StoreBodySums<ToBodies, T>{to_bodies, body_sums});
+    const VectorD2View<T> sums = e.exchange->sums(bodies);
+    e.each(bodies, StoreBodySums<ToBodies, T>{to_bodies, sums});
     e.sync();
-    e.combine(body_sums.ptr, body_sums.pitch, bodies);
-    e.each(bodies, AddBodySums<ToBodies, T>{to_bodies, body_sums});
+    e.combine(bodies);
+    e.each(bodies, AddBodySums<ToBodies, T>{to_bodies, sums});
   }
 };
 
@@ -313,21 +313,15 @@ class CacheStore {
     return grouping_.program(b, c, stream);
   }
   CacheSink<T> sink() { return CacheSink<T>{dv_.view(), dw_.view(), grouping_.view().slot}; }
-  // A distributed solve (an executor with a BodyExchange) combines each
-  // body's sums over the ranks in a store of its own, held from here on.
-  void exchange_sums(bool on) { exchanging_ = on; }
  protected:
   template <bool Sum, class BV, class Iterate>
   CacheApply<BV, T, Sum, Iterate> cache_program(const BV& b, std::size_t passes, const Iterate& it) {
     const auto g = grouping_.view();
-    if (exchanging_) gpusolve::detail::ensure_size(body_sums_, b.size(), 6);
     return {{dv_.view(), dw_.view(), g.rank, 0}, passes, entries_, b.size(),
-            {b, dv_.view(), dw_.view(), g.start, it}, exchanging_ ? body_sums_.view() : VectorD2View<T>{}};
+            {b, dv_.view(), dw_.view(), g.start, it}};
   }
   ContactGrouping<Device> grouping_;
   Vec3Store<Device, T> dv_, dw_;
-  Vec3Store<Device, T> body_sums_;  // exchange_sums: bodies x 6
-  bool exchanging_ = false;
   std::size_t entries_ = 0;
 
  private:

@@ -234,7 +234,6 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   template <class S = Strategy, std::enable_if_t<!std::is_same_v<S, Atomic>, int> = 0>
   void set_exchange(BodyExchange<T>* exchange) {
     run_.set_exchange(exchange);
-    acc_.exchange_sums(exchange != nullptr);
   }
 
  private:
