@@ -41,6 +41,7 @@ struct DistributedStats {
   double seconds_exchange = 0;  // this rank: bodies and remembered contacts moved, shadows sent, the
                                 // World's bodies rebuilt and read back, plus the solve's exchanges
   double seconds_step = 0;      // this rank: the World's step, the solve's exchanges included
+  bool rebuilt = false;         // the ranks' Worlds were rebuilt before the step (bodies changed ranks)
 };
 
 // Each rank owns the moving bodies whose centre lies in its cell of a
@@ -79,6 +80,8 @@ class DistributedWorld {
       : comm_(comm), agree_(comm), messages_(comm), local_(mine), exchange_(comm) {
     MPI_Comm_rank(comm, &rank_);
     MPI_Comm_size(comm, &ranks_);
+    if (ranks_ > 64)
+      throw UnsupportedError("gpusolve: DistributedWorld: at most 64 ranks (a body's shadow ranks are kept as bits)");
     local_.records().clear();
     std::vector<Placed> added = number(mine);
     agree_.run([&] { validate(added); });
@@ -95,18 +98,30 @@ class DistributedWorld {
     rebuild({});
   }
 
-  // One step of the whole scene; every rank calls it.
+  // One step of the whole scene; every rank calls it. The ranks' Worlds are
+  // rebuilt only where a body changes cells or ranks that need its shadow,
+  // or was modified: otherwise every shadow has moved exactly as its owner
+  // (the same velocity sums, the same integration), and only the bodies'
+  // states are checked.
   DistributedStats<T> step() {
     const auto start = std::chrono::steady_clock::now();
     collect_owned();
-    std::vector<std::vector<Remembered>> to = remembered_by_rank();
-    owned_ = send_to_owners(owned_);
-    rebuild(messages_.all_to_all(to));
+    DistributedStats<T> out;
+    out.rebuilt = bodies_change();
+    if (out.rebuilt) {
+      std::vector<std::vector<Remembered>> to = remembered_by_rank();
+      owned_ = send_to_owners(owned_);
+      rebuild(messages_.all_to_all(to));
+    } else {
+      agree_.run([&] {
+        for (const Placed& p : owned_) require_finite_state(p.body, p.gid);
+      });
+    }
     ++steps_;
     const auto exchanged = std::chrono::steady_clock::now();
     exchange_.take_seconds();
     const StepStats<T> st = world_->step();
-    DistributedStats<T> out;
+    stepped_ = true;
     out.seconds_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchanged).count();
     const auto back = std::chrono::steady_clock::now();
     collect_owned();
@@ -135,6 +150,7 @@ class DistributedWorld {
     for (Placed& p : owned_)
       if (p.gid == gid) {
         f(p.body);
+        modified_ = true;
         return true;
       }
     return false;
@@ -311,12 +327,15 @@ class DistributedWorld {
   void rebuild(const std::vector<Remembered>& moved) {
     std::vector<std::vector<Placed>> to(ranks_);
     std::vector<std::vector<std::size_t>> sent(ranks_);  // indices into owned_
-    for (std::size_t k = 0; k < owned_.size(); ++k)
+    shadowed_at_.resize(owned_.size());
+    for (std::size_t k = 0; k < owned_.size(); ++k) {
+      shadowed_at_[k] = shadow_ranks(owned_[k].body);
       for (int r = 0; r < rank_; ++r)
-        if (grid_->distance(owned_[k].body.pos, r) <= bound(owned_[k].body) + reach_) {
+        if (shadowed_at_[k] >> r & 1u) {
           to[r].push_back(owned_[k]);
           sent[r].push_back(k);
         }
+    }
     const std::vector<Placed> came = messages_.all_to_all(to);
     // The shadows arrive rank by rank, each rank's in the order it sent them.
     std::vector<int> from;
@@ -374,7 +393,27 @@ class DistributedWorld {
     world_->manager().syncDeviceFull();
     remember(moved);
     exchange_.share(shared);
-    stepped_ = true;
+    modified_ = false;
+  }
+
+  // The lower ranks whose cells come within contact reach of body b, which
+  // hold its shadow, as bits.
+  std::uint64_t shadow_ranks(const Body<T>& b) const {
+    std::uint64_t ranks = 0;
+    for (int r = 0; r < rank_; ++r)
+      if (grid_->distance(b.pos, r) <= bound(b) + reach_) ranks |= std::uint64_t(1) << r;
+    return ranks;
+  }
+
+  // Whether any rank's bodies change before this step (a collective): a body
+  // whose centre left its rank's cell, whose shadows are due on other ranks
+  // than where they are, or that was modified.
+  bool bodies_change() {
+    int change = modified_ ? 1 : 0;
+    for (std::size_t k = 0; k < owned_.size() && !change; ++k)
+      change = grid_->owner(owned_[k].body.pos) != rank_ || shadow_ranks(owned_[k].body) != shadowed_at_[k];
+    MPI_Allreduce(MPI_IN_PLACE, &change, 1, MPI_INT, MPI_LOR, comm_);
+    return change != 0;
   }
 
   // The step's figures over the ranks: owned bodies only, each contact once.
@@ -429,6 +468,8 @@ class DistributedWorld {
   std::size_t shadows_ = 0;
   std::size_t steps_ = 0;  // steps taken
   bool stepped_ = false;  // the World holds state that owned_ has not taken back
+  bool modified_ = false;  // modify() changed a body since the last rebuild
+  std::vector<std::uint64_t> shadowed_at_;  // per owned body: the ranks that hold its shadow (shadow_ranks)
 };
 
 }  // namespace gpusolve::rbd
