@@ -1,13 +1,14 @@
 // DistributedWorld over MPI, on the CPU backend (run by ctest with mpirun at
 // 1, 2 and 4 ranks) and, compiled again by test_distributed_world_gpu.cu with
-// GPUSOLVE_TEST_GPU, on the GPU (ranks sharing it): piles of spheres, of boxes
-// and of capsules match one World over the whole scene; bodies that cross
+// GPUSOLVE_TEST_GPU, on the GPU (ranks sharing it): piles of spheres, boxes,
+// capsules and unions match one World over the whole scene; bodies that cross
 // between ranks are neither lost nor doubled; a NaN in one rank's body and a
 // rank that throws are reported by every rank.
 #define CATCH_CONFIG_RUNNER
 #include <mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -80,6 +81,28 @@ BodySet<double> capsule_pile() {
       for (int x = 0; x < 4; ++x)
         set.add_capsule({x * 1.5, y * 1.5, 0.35 + z * 0.7}, 0.3, 0.4, 1.0, turn(z % 2 ? 1.5707963 : 0.1, 0, 0, 1));
   walls<double>(set, -0.8, 3 * 1.5 + 0.8);
+  return set;
+}
+
+// 4 x 4 x 3 unions in a box, of two types in turn: a clump of three spheres
+// (radius 0.3, 0.4 apart) and a box (half extents 0.3, 0.2, 0.2) with a
+// sphere (radius 0.25) at one end; 48 compounds, each layer turned.
+BodySet<double> union_pile() {
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  const std::array<double, 4> unturned{1, 0, 0, 0};
+  const CompoundType<double> clump = set.add_compound_type(
+      {{sphere, {0.3, 0, 0, 0}, {-0.4, 0, 0}, unturned}, {sphere, {0.3, 0, 0, 0}, {0, 0, 0}, unturned},
+       {sphere, {0.3, 0, 0, 0}, {0.4, 0, 0}, unturned}},
+      1.0);
+  const CompoundType<double> hammer =
+      set.add_compound_type({{box, {0.3, 0.2, 0.2, 0}, {-0.2, 0, 0}, unturned}, {sphere, {0.25, 0, 0, 0}, {0.3, 0, 0}, unturned}}, 1.0);
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x)
+        set.add_compound({x * 1.4, y * 1.4, 0.35 + z * 0.75}, (x + y + z) % 2 ? clump : hammer,
+                         turn(z % 2 ? 1.5707963 : 0.2, 0, 0, 1));
+  walls<double>(set, -0.8, 3 * 1.4 + 0.8);
   return set;
 }
 
@@ -173,6 +196,31 @@ TEST_CASE("distributed: a pile of capsules steps as one World does", "[distribut
   CHECK(c.penetration == Approx(c.penetration_single).epsilon(1e-6));
   CHECK(c.position < 1e-9);
   CHECK(c.velocity < 1e-7);
+}
+
+TEST_CASE("distributed: a pile of unions steps as one World does", "[distributed]") {
+  const Compared c = compare<AcceleratedJacobi<Gather>>(union_pile(), SolverSettings<double>{}, 60);
+  INFO("ranks " << ranks_of_world() << ": position " << c.position << ", velocity " << c.velocity << ", contacts "
+                << c.contacts << " / " << c.contacts_single << ", penetration " << c.penetration << " / "
+                << c.penetration_single);
+  CHECK(c.contacts == c.contacts_single);
+  CHECK(c.contacts >= 48);
+  CHECK(c.penetration == Approx(c.penetration_single).epsilon(1e-6));
+  CHECK(c.position < 1e-9);
+  CHECK(c.velocity < 1e-7);
+}
+
+TEST_CASE("distributed: ranks whose BodySets hold different compound types are refused", "[distributed]") {
+  BodySet<double> mine;
+  if (rank_of_world() == 0)  // rank 0 alone knows a type
+    mine.add_compound_type({{sphere, {0.3, 0, 0, 0}, {0, 0, 0}, {1, 0, 0, 0}}}, 1.0);
+  mine.add_sphere({double(rank_of_world()) * 3, 0, 0.5}, 0.5, 1.0);
+  using Dist = DistributedWorld<TestDevice, double>;
+  if (ranks_of_world() == 1) {
+    CHECK_NOTHROW(Dist(MPI_COMM_WORLD, mine, SolverSettings<double>{}));
+  } else {
+    CHECK_THROWS_AS(Dist(MPI_COMM_WORLD, mine, SolverSettings<double>{}), InvalidArgumentError);
+  }
 }
 
 TEST_CASE("distributed: bodies crossing between ranks are neither lost nor doubled", "[distributed]") {

@@ -61,8 +61,9 @@ struct DistributedStats {
 // On either backend: each rank's World runs where its bodies live (ranks may
 // share a GPU); the bodies and the solve's sums travel through host memory
 // (MpiBodyExchange). Methods that run distributed: World's solves_distributed (jacobi, apgd
-// with Gather or UpdateCache sums). A compound is refused by body. Every rank
-// passes the same settings and the same materials. A rank that throws (a body
+// with Gather or UpdateCache sums). Every rank passes the same settings, and
+// a BodySet with the same materials and compound types (a compound's parts are
+// found by index on whichever rank holds it); the counts are checked. A rank that throws (a body
 // that is not valid or not finite, named by its global id) makes every rank
 // throw the same error (RankAgreement).
 template <class Device = device::cpu, class T = float, class Model = ConeFriction,
@@ -83,6 +84,7 @@ class DistributedWorld {
     if (ranks_ > 64)
       throw UnsupportedError("gpusolve: DistributedWorld: at most 64 ranks (a body's shadow ranks are kept as bits)");
     local_.records().clear();
+    require_same_everywhere(mine);
     std::vector<Placed> added = number(mine);
     agree_.run([&] { validate(added); });
     const std::vector<Placed> fixed_everywhere = gather_fixed(added);
@@ -209,13 +211,25 @@ class DistributedWorld {
         if (!std::isfinite(x[c])) throw NonFiniteStateError(std::size_t(gid), field, steps_);
   }
 
-  static void validate(const std::vector<Placed>& bodies) {
+  void validate(const std::vector<Placed>& bodies) const {
     for (const Placed& p : bodies) {
-      if (p.body.shape == compound)
-        throw InvalidBodyError(std::size_t(p.gid), "shape", "compounds do not run distributed yet");
       if (p.body.status == shadow) throw InvalidBodyError(std::size_t(p.gid), "status", "shadows are the world's own");
-      validate_body(p.body, std::size_t(p.gid));
+      validate_body(p.body, std::size_t(p.gid), local_.parts());
     }
+  }
+
+  // Every rank's BodySet holds as many materials and compound parts as the
+  // others' (the same lists, as the class says), or every rank throws.
+  void require_same_everywhere(const BodySet<T>& mine) const {
+    const std::uint64_t mine_counts[2] = {mine.materials().size(), mine.parts().size()};
+    std::uint64_t low[2], high[2];
+    MPI_Allreduce(mine_counts, low, 2, MPI_UINT64_T, MPI_MIN, comm_);
+    MPI_Allreduce(mine_counts, high, 2, MPI_UINT64_T, MPI_MAX, comm_);
+    if (low[0] != high[0] || low[1] != high[1])
+      throw InvalidArgumentError("gpusolve: DistributedWorld: every rank must pass a BodySet with the same materials and "
+                                 "compound types (materials " + std::to_string(low[0]) + " to " +
+                                 std::to_string(high[0]) + ", compound parts " + std::to_string(low[1]) + " to " +
+                                 std::to_string(high[1]) + " over the ranks)");
   }
 
   // Every rank's fixed bodies, on every rank.
@@ -385,7 +399,7 @@ class DistributedWorld {
     agree_.run([&] {
       for (std::size_t k = 0; k < records.size(); ++k) {
         require_finite_state(records[k], gids[k]);
-        validate_body(records[k], std::size_t(gids[k]));
+        validate_body(records[k], std::size_t(gids[k]), local_.parts());
       }
     });
     gids_ = std::move(gids);
