@@ -171,10 +171,6 @@ class DistributedWorld {
     return out;
   }
 
-  int rank() const { return rank_; }
-  int ranks() const { return ranks_; }
-  LocalWorld& local_world() { return *world_; }
-
  private:
   // A body and its global id, as ranks send them (plain bytes).
   struct Placed {
