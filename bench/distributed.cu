@@ -2,12 +2,14 @@
 // many ranks mpirun starts, on the CPU backend or with every rank's World on
 // the one GPU (ranks sharing it):
 //   mpirun -np R gpusolve_bench_distributed [--backend cpu|gpu] [--n 100000] [--steps 300] [--csv FILE]
-// Measured over the last third of the steps, medians: the whole step (host
-// clock, every rank waits for the slowest at the step's end), the exchange
-// (bodies before the step plus the solve's exchanges; the slowest rank's),
-// and the World's step; over the last 200 steps the largest penetration; at
-// the end the contacts and shadows. Rank 0 prints a line and appends a CSV row.
-// Host clock: a step ends with the host reading its figures, on either backend.
+// Measured over the last third of the steps, medians, each phase the slowest
+// rank's: the whole step (host clock, every rank waits for the slowest at the
+// step's end); `bodies`, bodies moved between ranks, the Worlds rebuilt (or
+// their bodies checked) and read back; the World's detection, solve (without
+// its exchanges) and integration (World::set_phase_timing); `exchange`, the
+// solve's exchanges of sums and reductions, waits included. Over the last 200
+// steps the largest penetration; at the end the contacts and shadows; the
+// steps that rebuilt. Rank 0 prints a line and appends a CSV row.
 #include <mpi.h>
 
 #include <algorithm>
@@ -31,8 +33,12 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// The phases of a step, in ms, each the slowest rank's.
+constexpr int phases = 6;
+constexpr const char* phase_names[phases] = {"step", "bodies", "detection", "solve", "exchange", "integration"};
+
 struct Result {
-  double ms = 0, exchange = 0, world = 0, penetration = 0;
+  double ms[phases] = {}, penetration = 0;
   long rebuilds = 0;  // in the measured steps
   rbd::DistributedStats<T> last;
 };
@@ -40,23 +46,29 @@ struct Result {
 template <class Device>
 Result run(const rbd::BodySet<T>& scene, long steps) {
   rbd::DistributedWorld<Device, T> world(MPI_COMM_WORLD, scene, rbd::SolverSettings<T>{});
-  std::vector<double> total, exchange, stepping;
+  world.set_phase_timing(true);
+  std::vector<double> measured[phases];
   Result r;
   for (long k = 0; k < steps; ++k) {
     MPI_Barrier(MPI_COMM_WORLD);
     const auto start = std::chrono::steady_clock::now();
     r.last = world.step();
     MPI_Barrier(MPI_COMM_WORLD);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    double ex = 1e3 * r.last.seconds_exchange;
-    MPI_Allreduce(MPI_IN_PLACE, &ex, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    const auto& st = r.last;
+    double ms[phases] = {std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
+                         1e3 * st.seconds_bodies,
+                         1e3 * st.local.time_detection,
+                         1e3 * (st.local.time_solve - st.seconds_exchange),
+                         1e3 * st.seconds_exchange,
+                         1e3 * st.local.time_integration};
+    MPI_Allreduce(MPI_IN_PLACE, ms, phases, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
     if (k >= steps - steps / 3) {
-      total.push_back(ms), exchange.push_back(ex), stepping.push_back(1e3 * r.last.seconds_step);
-      r.rebuilds += r.last.rebuilt;
+      for (int p = 0; p < phases; ++p) measured[p].push_back(ms[p]);
+      r.rebuilds += st.rebuilt;
     }
-    if (k >= steps - 200) r.penetration = std::max(r.penetration, double(r.last.max_penetration));
+    if (k >= steps - 200) r.penetration = std::max(r.penetration, double(st.max_penetration));
   }
-  r.ms = median(total), r.exchange = median(exchange), r.world = median(stepping);
+  for (int p = 0; p < phases; ++p) r.ms[p] = median(measured[p]);
   return r;
 }
 
@@ -82,19 +94,23 @@ int main(int argc, char** argv) {
   const Result r = backend == "gpu" ? run<device::gpu>(scene, steps) : run<device::cpu>(scene, steps);
   if (rank == 0) {
     const int threads = std::getenv("OMP_NUM_THREADS") ? std::atoi(std::getenv("OMP_NUM_THREADS")) : 0;
-    std::printf("%s, ranks %d (OMP_NUM_THREADS %d), %zu spheres, %ld steps: %.2f ms/step, exchange %.2f ms (%.0f%%), "
-                "contacts %zu, shadows %zu, penetration %.4f%%, rebuilt before %ld of the %ld measured steps\n",
-                backend.c_str(), ranks, threads, n, steps, r.ms, r.exchange, 100 * r.exchange / r.ms, r.last.contacts,
-                r.last.shadows, 100 * r.penetration, r.rebuilds, steps / 3);
+    std::printf("%s, ranks %d (OMP_NUM_THREADS %d), %zu spheres, %ld steps: %.2f ms/step (bodies %.2f, detection "
+                "%.2f, solve %.2f, exchange %.2f, integration %.2f), contacts %zu, shadows %zu, penetration %.4f%%, "
+                "rebuilt before %ld of the %ld measured steps\n",
+                backend.c_str(), ranks, threads, n, steps, r.ms[0], r.ms[1], r.ms[2], r.ms[3], r.ms[4], r.ms[5],
+                r.last.contacts, r.last.shadows, 100 * r.penetration, r.rebuilds, steps / 3);
     if (!csv.empty()) {
       FILE* f = std::fopen(csv.c_str(), "a");
       if (f) {
         std::fseek(f, 0, SEEK_END);
-        if (std::ftell(f) == 0)
-          std::fprintf(f, "backend,ranks,threads_per_rank,n,steps,ms_per_step,ms_exchange,ms_world_step,contacts,shadows,"
-                          "max_penetration,rebuilds\n");
-        std::fprintf(f, "%s,%d,%d,%zu,%ld,%.4f,%.4f,%.4f,%zu,%zu,%.6g,%ld\n", backend.c_str(), ranks, threads, n, steps,
-                     r.ms, r.exchange, r.world, r.last.contacts, r.last.shadows, r.penetration, r.rebuilds);
+        if (std::ftell(f) == 0) {
+          std::fprintf(f, "backend,ranks,threads_per_rank,n,steps");
+          for (const char* p : phase_names) std::fprintf(f, ",ms_%s", p);
+          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds\n");
+        }
+        std::fprintf(f, "%s,%d,%d,%zu,%ld", backend.c_str(), ranks, threads, n, steps);
+        for (double x : r.ms) std::fprintf(f, ",%.4f", x);
+        std::fprintf(f, ",%zu,%zu,%.6g,%ld\n", r.last.contacts, r.last.shadows, r.penetration, r.rebuilds);
         std::fclose(f);
       }
     }

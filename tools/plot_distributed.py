@@ -22,12 +22,14 @@ def main():
     rows = [r for r in csv.DictReader(open(a.csv)) if a.backend is None or r.get("backend") == a.backend]
     rows = sorted(rows, key=lambda r: int(r["ranks"]))
     ranks = [int(r["ranks"]) for r in rows]
-    total = [float(r["ms_per_step"]) for r in rows]
-    exchange = [float(r["ms_exchange"]) for r in rows]
+    # Both of the bench's formats: ms_per_step and ms_exchange (bodies and the
+    # solve's exchanges in one) before 2026-12-06 noon, then ms_step with the phases apart.
+    total = [float(r.get("ms_step") or r["ms_per_step"]) for r in rows]
+    exchange = [float(r["ms_exchange"]) + float(r.get("ms_bodies") or 0) for r in rows]
     one = total[ranks.index(1)] if 1 in ranks else total[0] * ranks[0]
     fig, ax = plt.subplots(figsize=(6, 4))
     ax.bar([str(r) for r in ranks], total, color="#4c72b0", label="whole step")
-    ax.bar([str(r) for r in ranks], exchange, color="#dd8452", label="exchange (slowest rank)")
+    ax.bar([str(r) for r in ranks], exchange, color="#dd8452", label="bodies and exchange (slowest rank)")
     ax.plot([str(r) for r in ranks], [one / r for r in ranks], "k--", marker="o", label="ideal: one rank / ranks")
     for i, r in enumerate(ranks):
         ax.annotate(f"{one / total[i]:.2f}x", (i, total[i]), ha="center", va="bottom", fontsize=9)

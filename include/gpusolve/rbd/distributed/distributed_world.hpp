@@ -38,9 +38,11 @@ struct DistributedStats {
   T kinetic_energy = 0;         // of the moving bodies, each counted once
   std::array<T, 3> momentum{};  // sum of m v over the moving bodies
   std::size_t shadows = 0;      // shadow copies held, over the ranks
-  double seconds_exchange = 0;  // this rank: bodies and remembered contacts moved, shadows sent, the
-                                // World's bodies rebuilt and read back, plus the solve's exchanges
-  double seconds_step = 0;      // this rank: the World's step, the solve's exchanges included
+  double seconds_bodies = 0;    // this rank: bodies and remembered contacts moved, shadows sent, the
+                                // World rebuilt (or its bodies checked) and its bodies read back
+  double seconds_exchange = 0;  // this rank: the solve's exchanges (sums and reductions), waits included
+  double seconds_step = 0;      // this rank: the World's step, the solve's exchanges included (its
+                                // phases in local.time_*, with set_phase_timing)
   bool rebuilt = false;         // the ranks' Worlds were rebuilt before the step (bodies changed ranks)
 };
 
@@ -125,11 +127,11 @@ class DistributedWorld {
     const StepStats<T> st = world_->step();
     stepped_ = true;
     out.seconds_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchanged).count();
+    out.seconds_exchange = exchange_.take_seconds();
     const auto back = std::chrono::steady_clock::now();
     collect_owned();
-    out.seconds_exchange = std::chrono::duration<double>(exchanged - start).count() +
-                           std::chrono::duration<double>(std::chrono::steady_clock::now() - back).count() +
-                           exchange_.take_seconds();
+    out.seconds_bodies = std::chrono::duration<double>(exchanged - start).count() +
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - back).count();
     out.local = st;
     figures(st, out);
     return out;
@@ -142,6 +144,10 @@ class DistributedWorld {
     for (const Placed& p : owned_) out.push_back({p.gid, p.body});
     return out;
   }
+
+  // Per-phase timing of each rank's World (World::set_phase_timing): the
+  // steps' local.time_* figures.
+  void set_phase_timing(bool on) { world_->set_phase_timing(on); }
 
   // Calls f(body) for the moving body with global id `gid` on the rank that
   // owns it (returns whether this rank does); the next step takes it as
