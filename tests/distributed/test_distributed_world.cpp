@@ -181,9 +181,11 @@ TEST_CASE("distributed: a pile of spheres steps as one World does", "[distribute
   check_matches(c, 0, ranks_of_world() == 1 && std::is_same_v<TestDevice, device::cpu>);
 }
 
-TEST_CASE("distributed: a pile of boxes steps as one World does, under Jacobi too", "[distributed]") {
+TEST_CASE("distributed: a pile of boxes steps as one World does, under Jacobi and substepping too",
+          "[distributed]") {
   check_matches(compare<AcceleratedJacobi<Gather>>(box_pile(), SolverSettings<double>{}, 60), 75);
   check_matches(compare<Jacobi<Gather>>(box_pile(), SolverSettings<double>{}, 60), 75);
+  check_matches(compare<Substepping<>>(box_pile(), SolverSettings<double>{}, 60), 75);
 }
 
 TEST_CASE("distributed: a pile of capsules steps as one World does", "[distributed]") {

@@ -137,7 +137,8 @@ class World {
   // Runs the solves distributed (rbd/distributed/ sets it): the bodies' sums
   // and every reduction of the solver go through `exchange` (nullptr: none).
   // Throws UnsupportedError naming the method where it does not run
-  // distributed (solves_distributed: the Jacobi family with Gather or UpdateCache).
+  // distributed (solves_distributed: the Jacobi family with Gather or UpdateCache,
+  // and substepping over it).
   void set_exchange(BodyExchange<T>* exchange);
   // The contacts the last step remembered for the next one's warm start, on
   // the host, and remember() of such contacts (after the BodySet was
@@ -444,7 +445,8 @@ void World<Device, T, Model, Method, Shapes>::set_exchange(BodyExchange<T>* exch
     solver_.set_exchange(exchange);
   else if (exchange != nullptr)
     throw UnsupportedError(std::string("gpusolve: World::set_exchange: the method '") + Method::name +
-                           "' does not run distributed (jacobi and apgd with the Gather or UpdateCache sums do)");
+                           "' does not run distributed (jacobi and apgd with the Gather or UpdateCache sums do, and "
+                           "substepping over them)");
 }
 
 template <class Device, class T, class Model, class Method, ShapeMask Shapes>

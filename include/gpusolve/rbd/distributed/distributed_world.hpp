@@ -63,7 +63,7 @@ struct DistributedStats {
 // On either backend: each rank's World runs where its bodies live (ranks may
 // share a GPU); the bodies and the solve's sums travel through host memory
 // (MpiBodyExchange). Methods that run distributed: World's solves_distributed (jacobi, apgd
-// with Gather or UpdateCache sums). Every rank passes the same settings, and
+// with Gather or UpdateCache sums, substepping over them). Every rank passes the same settings, and
 // a BodySet with the same materials and compound types (a compound's parts are
 // found by index on whichever rank holds it); the counts are checked. A rank that throws (a body
 // that is not valid or not finite, named by its global id) makes every rank

@@ -96,6 +96,14 @@ class SubsteppingSolver {
     return stats;
   }
 
+  // A distributed solve (rbd/distributed/), where the inner method runs
+  // distributed: its exchange; the substeps' forces, moves and gaps are each
+  // body's and contact's own, the same on every rank that holds them.
+  template <class S = InnerSolver, std::enable_if_t<solves_distributed<S, T>::value, int> = 0>
+  void set_exchange(BodyExchange<T>* exchange) {
+    inner_.set_exchange(exchange);
+  }
+
  private:
   InnerSolver inner_;
 };
