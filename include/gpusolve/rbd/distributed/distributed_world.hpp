@@ -98,7 +98,10 @@ class DistributedWorld {
     fixed_ = fixed_everywhere;
     owned_ = send_to_owners(owned);
     world_.emplace(local_, settings);
+    // One rank shares nothing: its World solves as any World does (on the GPU,
+    // one persistent kernel); the method must still be one that runs distributed.
     world_->set_exchange(&exchange_);
+    if (ranks_ == 1) world_->set_exchange(nullptr);
     rebuild({});
   }
 
