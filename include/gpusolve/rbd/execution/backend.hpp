@@ -32,24 +32,6 @@ inline auto thrust_policy(device::gpu, stream_t stream) { return thrust::cuda::p
 }
 #endif
 
-// Reads element `index` of memory owned by Device, after the stream's work.
-template <class Device, class U>
-U read_back(const U* p, std::size_t index, stream_t stream) {
-  U value{};
-  if constexpr (std::is_same_v<Device, device::cpu>) {
-    (void)stream;
-    value = p[index];
-  } else {
-#if GPUSOLVE_HAS_CUDART
-    GPUSOLVE_CUDA_CHECK(cudaMemcpyAsync(&value, p + index, sizeof(U), cudaMemcpyDeviceToHost, stream));
-    GPUSOLVE_CUDA_CHECK(cudaStreamSynchronize(stream));
-#else
-    throw UnsupportedError("gpusolve: reading device memory needs the CUDA runtime");
-#endif
-  }
-  return value;
-}
-
 // Copies `count` elements between memory owned by Device and the host:
 // `to_host`, from the backend's src into the host's dst, else the other way;
 // after the stream's work, and the host waits for it.
@@ -65,9 +47,17 @@ void copy_with_host(U* dst, const U* src, std::size_t count, bool to_host, strea
                                         to_host ? cudaMemcpyDeviceToHost : cudaMemcpyHostToDevice, stream));
     GPUSOLVE_CUDA_CHECK(cudaStreamSynchronize(stream));
 #else
-    throw UnsupportedError("gpusolve: copying to or from device memory needs the CUDA runtime");
+    throw UnsupportedError("gpusolve: reading or writing device memory needs the CUDA runtime");
 #endif
   }
+}
+
+// Reads element `index` of memory owned by Device, after the stream's work.
+template <class Device, class U>
+U read_back(const U* p, std::size_t index, stream_t stream) {
+  U value{};
+  copy_with_host<Device>(&value, p + index, 1, true, stream);
+  return value;
 }
 
 }  // namespace gpusolve::rbd::detail
