@@ -10,6 +10,7 @@
 
 #include "catch_compat.hpp"
 #include "test_rbd_scenes.hpp"
+#include "../../bench/shared_pile.hpp"
 
 using namespace rbd_test;
 
@@ -61,6 +62,58 @@ TEST_CASE("contact colouring: no colour holds two contacts of one moving body, a
   CHECK(col.rounds() == needed + needed / 4 + 2);
   CHECK(col.rounds_needed() == needed);
   for (std::size_t p = 0; p < c.size(); ++p) REQUIRE(col.order()[p] == first[p]);
+}
+
+TEST_CASE("contact colouring colours body pairs: a box pair's points share one colour, and a sweep takes them in order",
+          "[rbd_methods][shapes]") {
+  BodySet<double> set = gpusolve::bench::box_pyramid<double>(8);  // 36 boxes on a floor, four points per face
+  BodyManager<device::cpu, double> m(set);
+  m.syncDeviceFull();
+  Contacts<device::cpu, double, ConeFriction> c;
+  CollisionDetection<device::cpu, double> cd;
+  cd.detect(m.device(), c, 0.1);
+  const auto b = m.device().view();
+  const auto cv = c.view();
+  std::size_t pairs = 0, most_points = 0;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (cv.opens_pair(i)) {
+      ++pairs;
+      std::size_t k = 1;
+      while (i + k < c.size() && cv.same_pair(i, i + k)) ++k;
+      most_points = std::max(most_points, k);
+    }
+  REQUIRE(most_points == 4);
+  REQUIRE(c.size() >= 3 * pairs);
+  ContactColouring<device::cpu> col;
+  col.build(b, cv);
+  // A box touches at most two below, two beside and two above: six moving
+  // neighbours; the greedy colouring in hashed order takes 9 here (point by
+  // point it took four times as many: each point of a pair needs its own colour).
+  CHECK(col.colours() >= 3);
+  CHECK(col.colours() <= 10);
+  REQUIRE(col.offset(col.colours()) == pairs);
+  std::vector<std::uint32_t> swept;  // the contacts one sweep visits, in its order
+  const rbd::detail::ColourView view = col.view();
+  for (std::size_t k = 0; k < col.colours(); ++k) {
+    std::set<std::uint32_t> bodies;
+    for (std::size_t p = col.offset(k); p < col.offset(k + 1); ++p) {
+      const std::uint32_t i = col.order()[p];
+      REQUIRE(cv.opens_pair(i));
+      for (std::uint32_t body : {c.a(i), c.b(i)})
+        if (b.moving(body)) REQUIRE(bodies.insert(body).second);  // no moving body twice in one colour
+    }
+    const auto record = [&](std::size_t i) { swept.push_back(std::uint32_t(i)); };
+    const rbd::detail::InColour<decltype(record), decltype(cv)> in{record, cv, view, k};
+    for (std::size_t j = 0; j < view.widest; ++j) {
+      const std::size_t before = swept.size();
+      in(j);
+      for (std::size_t q = before + 1; q < swept.size(); ++q) REQUIRE(swept[q] == swept[q - 1] + 1);  // a pair's points in order
+    }
+  }
+  std::vector<std::uint32_t> sorted = swept;
+  std::sort(sorted.begin(), sorted.end());
+  REQUIRE(sorted.size() == c.size());  // every point once
+  for (std::size_t i = 0; i < sorted.size(); ++i) REQUIRE(sorted[i] == i);
 }
 
 TEST_CASE("contact grouping: each moving body's entries in entry order, the fixed bodies' behind them",

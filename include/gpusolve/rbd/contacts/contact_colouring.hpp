@@ -1,5 +1,5 @@
-// ContactColouring: splits the contacts of one step into colours, sets of
-// contacts that share no moving body, on the contacts' backend.
+// ContactColouring: splits the body pairs in contact in one step into colours,
+// sets of pairs that share no moving body, on the contacts' backend.
 #pragma once
 
 #include <algorithm>
@@ -26,6 +26,7 @@ namespace gpusolve::rbd {
 namespace detail {
 
 inline constexpr std::uint32_t uncoloured = 0xffffffffu;
+inline constexpr std::uint32_t follows = 0xfffffffeu;  // a pair's later point: it goes with the first
 inline constexpr std::uint32_t mask_colours = 64;  // colours chosen first-fit from a 64-bit mask
 
 // A contact's place in the selection order: a hash of its index (so that
@@ -63,9 +64,25 @@ struct SmallestUncoloured {
 
 // What a colouring's rounds have counted so far, read back in one copy.
 struct ColouringCounters {
-  std::uint32_t coloured;  // contacts coloured
+  std::uint32_t coloured;  // contacts coloured, a pair's later points included
   std::uint32_t colours;   // colours used
   std::uint32_t rounds;    // the last round that coloured a contact, plus one
+};
+
+// The start of a build: a pair's first point is to be coloured, its later
+// points follow it (counted as coloured at once).
+template <class CV>
+struct MarkPairs {
+  CV c;
+  std::uint32_t* colour;
+  ColouringCounters* counters;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    const bool first = c.opens_pair(i);
+    colour[i] = first ? uncoloured : follows;
+    if (!first)
+      cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(counters->coloured)
+          .fetch_add(1, cuda::std::memory_order_relaxed);
+  }
 };
 
 // An uncoloured contact that is the smallest at each of its moving bodies takes
@@ -104,50 +121,61 @@ struct PickColour {
   }
 };
 
-// The colours of one build (ContactColouring::view()): colour k's contacts
-// are order[bounds[k]], ..., order[bounds[k + 1] - 1], with `bounds` in the
-// contacts' backend memory; `widest`: the most contacts of one colour.
+// The colours of one build (ContactColouring::view()): colour k's pairs are
+// those whose first points are order[bounds[k]], ..., order[bounds[k + 1] - 1],
+// with `bounds` in the contacts' backend memory; `widest`: the most pairs of
+// one colour.
 struct ColourView {
   const std::uint32_t* order;
   const std::uint32_t* bounds;
   std::size_t colours, widest;
 };
 
-// f(contact) for the j-th contact of colour k, where colour k has one.
-template <class F>
+// f(contact) for each point of the j-th pair of colour k, where colour k has
+// one, in the contacts' order: one thread takes a pair's points one after the
+// other, each seeing the velocities the one before it left.
+template <class F, class CV>
 struct InColour {
   F f;
+  CV c;
   ColourView colours;
   std::size_t k;
   GPUSOLVE_HD void operator()(std::size_t j) const {
     const std::size_t first = colours.bounds[k];
-    if (first + j < colours.bounds[k + 1]) f(colours.order[first + j]);
+    if (first + j >= colours.bounds[k + 1]) return;
+    const std::size_t i = colours.order[first + j], n = c.size();
+    for (std::size_t p = i; p < n && c.same_pair(p, i); ++p) f(p);
   }
 };
 
 // Queues f over the contacts of each colour, colour by colour, through a
 // program's executor e (persistent_loop.hpp), a barrier after each colour.
 GPUSOLVE_EXEC_CHECK_DISABLE
-template <class E, class F>
-GPUSOLVE_HD void sweep_colours(const E& e, const ColourView& colours, const F& f) {
+template <class E, class CV, class F>
+GPUSOLVE_HD void sweep_colours(const E& e, const CV& c, const ColourView& colours, const F& f) {
   for (std::size_t k = 0; k < colours.colours; ++k) {
-    e.each(colours.widest, InColour<F>{f, colours, k});
+    e.each(colours.widest, InColour<F, CV>{f, c, colours, k});
     e.sync();
   }
 }
 
 }  // namespace detail
 
-// Colours the contacts of `c` (over the bodies of `b`) so that no two contacts
-// of one colour share a moving body; contacts with fixed bodies (the floor) do
-// not conflict there. A Jones-Plassmann-style parallel greedy colouring: each
-// round, every contact that precedes its uncoloured neighbours in a hashed
-// order takes the smallest colour its neighbours leave free. About as many
-// colours as the most contacts on one body (a close-packed sphere: 12).
-// Deterministic on both backends. After build(), order() lists the contacts
-// colour by colour, colour k occupying [offset(k), offset(k + 1)); those
-// offsets are the host's, read back once per build. Past 64 colours a colour
-// number may stay empty (see PickColour).
+// Colours the body pairs in contact in `c` (over the bodies of `b`) so that no
+// two pairs of one colour share a moving body; pairs with fixed bodies (the
+// floor) do not conflict there. A pair is coloured as its first point, and its
+// other points (a box face's four) go with it: a sweep takes them one after
+// the other in one thread, as PhysX batches a pair's constraints, so a resting
+// box costs one colour per neighbour, not one per point (the 20-layer pyramid's
+// 29 colours were points: four per box pair). A Jones-Plassmann-style parallel
+// greedy colouring: each round, every pair that precedes its uncoloured
+// neighbours in a hashed order takes the smallest colour its neighbours leave
+// free. About as many colours as the most pairs on one body (a close-packed
+// sphere: 12). Deterministic on both backends. After build(), order() lists the
+// pairs' first points colour by colour, colour k occupying [offset(k),
+// offset(k + 1)), and the later points behind them; those offsets are the
+// host's, read back once per build. Past 64 colours a colour number may stay
+// empty (see PickColour).
 template <class Device>
 class ContactColouring {
  public:
@@ -163,9 +191,9 @@ class ContactColouring {
     gpusolve::detail::ensure_size(colour_, nc);
     gpusolve::detail::ensure_size(order_, nc);
     gpusolve::detail::ensure_size(best_, b.size());
-    colour_.fill(detail::uncoloured, stream);
     if (counters_.size_x() == 0) counters_.resize(1);
     counters_.fill(detail::ColouringCounters{}, stream);
+    launch(dev, nc, detail::MarkPairs<CV>{c, colour_.data(), counters_.data()}, stream);  // every colour_ entry
     const auto g = grouping_.view();
     using GV = decltype(g);
     std::uint32_t round = 0, coloured = 0, colours = 0;

@@ -142,6 +142,12 @@ struct Contacts {
     }
     std::size_t bound() const { return count.bound; }
 
+    // A body pair's points are neighbours in the (a, b) order detection writes:
+    // whether contacts i and j join the same two bodies, and whether contact i
+    // is its pair's first point (a manifold's, or a compound pair's part pairs').
+    GPUSOLVE_HD bool same_pair(std::size_t i, std::size_t j) const { return a[i] == a[j] && b[i] == b[j]; }
+    GPUSOLVE_HD bool opens_pair(std::size_t i) const { return i == 0 || !same_pair(i - 1, i); }
+
     // Writes contact i. V is any vector type with operator[](0..2). The
     // tangents are built from n, so friction rows are well defined for any
     // normal; mu is ignored by models without friction. point_feature tells

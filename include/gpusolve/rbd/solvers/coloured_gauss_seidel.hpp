@@ -23,7 +23,7 @@ namespace gpusolve::rbd {
 namespace detail {
 
 // One contact's next velocity error and its projected update, applied to its
-// bodies at once (no other contact of its colour touches them).
+// bodies at once (no other pair of its colour touches them).
 template <class Model, class BV, class CV, class T>
 struct GaussSeidelContact {
   CalcNextPhi<Model, BV, CV, T> phi;
@@ -54,7 +54,7 @@ struct GaussSeidelStart {
     if (saving && first) e.each(save.b.size(), save);  // nothing in this phase writes a velocity
     e.each(blocks.c.size(), blocks);
     e.sync();
-    if (from_x && first) sweep_colours(e, colours, apply);
+    if (from_x && first) sweep_colours(e, blocks.c, colours, apply);
   }
 };
 
@@ -70,7 +70,7 @@ struct GaussSeidelIteration {
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e, std::size_t, bool last) const {
-    sweep_colours(e, colours, last ? measuring : plain);
+    sweep_colours(e, plain.phi.c, colours, last ? measuring : plain);
     if (last) reduce_residual(e, residual, residual_out);
   }
 };
