@@ -2,7 +2,7 @@
 //
 // Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance,rolling]
 //                          [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
-//                          [--cpu-max 1000000] [--csv FILE]
+//                          [--cpu-max 1000000] [--one-world] [--csv FILE]
 //
 // For each N the shared pile (bench/shared_pile.hpp, docs/piles.md)
 // falls for `settle` steps on the GPU at the library's defaults; every timing
@@ -37,6 +37,10 @@
 //            takes them unattended one by one, reading each step's statistics;
 //   phases   medians of the World's per-phase event times (set_phase_timing) over
 //            as many more steps.
+// --one-world: for sizes where two Worlds do not fit the GPU (100M spheres on an
+//   H200): only `step` and `phases`, in the World that settled (no copies of the
+//   state, host or device); queued and unattended print 0, the CPU backend is skipped.
+// Also printed for jacobi10: contact-iterations per second of the solve phase.
 // CPU backend: the same World on device::cpu from the same state (host clock;
 // its kernels run as OpenMP loops where the build has OpenMP, the thread count
 // is printed), after 2 warm-up steps; sizes above --cpu-max are skipped.
@@ -74,6 +78,7 @@ struct Options {
   std::vector<std::string> loops{"auto"};
   long settle = 900, steps = 100, cpu_steps = 20;
   std::size_t cpu_max = 1000000;
+  bool one_world = false;
   std::string csv;
 };
 
@@ -136,11 +141,9 @@ struct Samples {
   }
 };
 
-template <class Method, class Model>
-Row time_gpu(const rbd::BodySet<T>& start, const SolverSettings<T>& s, long steps) {
-  using World = rbd::World<device::gpu, T, Model, Method>;
-  rbd::BodySet<T> set = start, queued_set = start, unattended_set = start, counted_set = start;
-  World world(set, s);
+// Times `world`'s steps one by one after 20 warm-up steps, then its phases.
+template <class World>
+Row time_world(World& world, long steps) {
   world.advance(20);
   EventTimer timer(stream_t{});
   Samples x;
@@ -151,36 +154,52 @@ Row time_gpu(const rbd::BodySet<T>& start, const SolverSettings<T>& s, long step
     x.accuracy(world.latest_stats());
   }
   x.row.device_bytes = memory::memory_use<memory::device>().now;  // only this World is alive
+  world.set_phase_timing(true);
+  for (long k = 0; k < steps; ++k) {
+    world.advance(1);
+    x.phases(world.latest_stats());
+  }
+  world.set_phase_timing(false);
+  return x.medians(steps);
+}
+
+template <class Method, class Model>
+Row time_gpu(const rbd::BodySet<T>& start, const SolverSettings<T>& s, long steps, bool one_world) {
+  using World = rbd::World<device::gpu, T, Model, Method>;
+  Row row;
+  {
+    rbd::BodySet<T> set = start;
+    World world(set, s);
+    row = time_world(world, steps);
+  }
+  if (one_world) return row;
+  rbd::BodySet<T> queued_set = start, unattended_set = start, counted_set = start;
+  EventTimer timer(stream_t{});
   {
     World queued(queued_set, s);
     queued.advance(20);
     timer.start();
     queued.advance(std::size_t(steps));
-    x.row.queued_ms = timer.stop_ms() / double(steps);
+    row.queued_ms = timer.stop_ms() / double(steps);
   }
   {
     World unattended(unattended_set, s);
     unattended.advance(20);
     timer.start();
     unattended.advance_unattended(std::size_t(steps));
-    x.row.unattended_ms = timer.stop_ms() / double(steps);
+    row.unattended_ms = timer.stop_ms() / double(steps);
     unattended.finish();
-    x.row.requeued = unattended.steps_requeued();
+    row.requeued = unattended.steps_requeued();
   }
   {
     World counted(counted_set, s);
     counted.advance(20);
     for (long k = 0; k < steps; ++k) {
       counted.advance_unattended(1);
-      x.row.unattended_iterations += double(counted.latest_stats().solver.total_iterations) / double(steps);
+      row.unattended_iterations += double(counted.latest_stats().solver.total_iterations) / double(steps);
     }
   }
-  world.set_phase_timing(true);
-  for (long k = 0; k < steps; ++k) {
-    world.advance(1);
-    x.phases(world.latest_stats());
-  }
-  return x.medians(steps);
+  return row;
 }
 
 template <class Method, class Model>
@@ -204,17 +223,19 @@ Row time_cpu(rbd::BodySet<T> set, const SolverSettings<T>& s, long steps) {
 }
 
 template <class Method, class Model = rbd::ConeFriction>
-Row time_backend(bool gpu, const rbd::BodySet<T>& set, const SolverSettings<T>& s, long steps) {
-  return gpu ? time_gpu<Method, Model>(set, s, steps) : time_cpu<Method, Model>(set, s, steps);
+Row time_backend(bool gpu, const rbd::BodySet<T>& set, const SolverSettings<T>& s, long steps, bool one_world) {
+  return gpu ? time_gpu<Method, Model>(set, s, steps, one_world) : time_cpu<Method, Model>(set, s, steps);
 }
 
-Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const rbd::BodySet<T>& set, long steps) {
+Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const rbd::BodySet<T>& set, long steps,
+              bool one_world) {
   const SolverSettings<T> s = settings_for(mode, loop);
-  if (mode == "jacobi10") return time_backend<rbd::Jacobi<rbd::Gather>>(gpu, set, s, steps);
-  if (mode == "atomic10") return time_backend<rbd::Jacobi<rbd::Atomic>>(gpu, set, s, steps);
+  if (mode == "jacobi10") return time_backend<rbd::Jacobi<rbd::Gather>>(gpu, set, s, steps, one_world);
+  if (mode == "atomic10") return time_backend<rbd::Jacobi<rbd::Atomic>>(gpu, set, s, steps, one_world);
   if (mode == "rolling")
-    return time_backend<rbd::AcceleratedJacobi<rbd::Gather>, rbd::ConeRollingFriction>(gpu, set, s, steps);
-  return time_backend<rbd::AcceleratedJacobi<rbd::Gather>>(gpu, set, s, steps);
+    return time_backend<rbd::AcceleratedJacobi<rbd::Gather>, rbd::ConeRollingFriction>(gpu, set, s, steps,
+                                                                                       one_world);
+  return time_backend<rbd::AcceleratedJacobi<rbd::Gather>>(gpu, set, s, steps, one_world);
 }
 
 }  // namespace
@@ -223,7 +244,7 @@ int main(int argc, char** argv) {
   Options o;
   const char* usage =
       "[--n LIST] [--modes jacobi10,defaults,tolerance,rolling] [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
-      "[--csv FILE]";
+      "[--one-world] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--n") o.n = parse_list<std::size_t>(option_value(argc, argv, i));
@@ -233,6 +254,7 @@ int main(int argc, char** argv) {
     else if (a == "--steps") o.steps = std::max(1L, std::stol(option_value(argc, argv, i)));
     else if (a == "--cpu-steps") o.cpu_steps = std::max(1L, std::stol(option_value(argc, argv, i)));
     else if (a == "--cpu-max") o.cpu_max = std::stoul(option_value(argc, argv, i));
+    else if (a == "--one-world") o.one_world = true;
     else if (a == "--csv") o.csv = option_value(argc, argv, i);
     else usage_exit(argv[0], usage, a);
   }
@@ -263,7 +285,7 @@ int main(int argc, char** argv) {
                     100 * double(settle.latest_stats().max_penetration));
       }
       for (const bool gpu : {true, false}) {
-        if (!gpu && n > o.cpu_max) continue;
+        if (!gpu && (n > o.cpu_max || o.one_world)) continue;
         for (const auto& mode : o.modes)
           for (const auto& g : o.loops) {
             if (!gpu && &g != &o.loops.front()) continue;  // the CPU backend has one loop: one row
@@ -271,13 +293,16 @@ int main(int argc, char** argv) {
             std::printf("... %s n=%zu %s loop %s, %ld steps\n", gpu ? "gpu" : "cpu", n, mode.c_str(),
                         gpu ? g.c_str() : "-", steps);
             std::fflush(stdout);
-            const Row r = time_mode(gpu, mode, g, set, steps);
+            const Row r = time_mode(gpu, mode, g, set, steps, o.one_world);
             std::printf("    %s %s %s: %zu contacts: step %.3f ms (queued %.3f ms, unattended %.3f ms, %zu steps "
                         "requeued), detection %.3f, solve %.3f, integration %.3f ms; %.1f iterations (unattended "
                         "%.1f), penetration %.4f%%, residual %.3g; %.0f bytes of GPU memory per body\n",
                         gpu ? "gpu" : "cpu", mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.step_ms, r.queued_ms,
                         r.unattended_ms, r.requeued, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations,
                         r.unattended_iterations, 100 * r.penetration, r.residual, double(r.device_bytes) / double(n));
+            if (r.solve_ms > 0)
+              std::printf("    solve: %.2f G contact-iterations per second\n",
+                          double(r.contacts) * r.iterations / (r.solve_ms * 1e6));
             std::fflush(stdout);
             if (csv)
               std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s,%.5f,%zu,%.2f,%zu,%.1f\n",
