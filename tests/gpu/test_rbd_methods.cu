@@ -6,34 +6,43 @@
 
 #include "catch_compat.hpp"
 #include "../host/test_rbd_scenes.hpp"
+#include "../../bench/shared_pile.hpp"
 
 using namespace rbd_test;
 
 TEST_CASE("GPU contact colouring equals the CPU's", "[rbd_methods][gpu]") {
-  auto set = pile<float>(6, 5);
-  auto colour = [&](auto device) {
+  // A sphere pile (one point per pair) and a box pyramid (four per face: pairs coloured).
+  const auto colour = [](auto device, rbd::BodySet<float> set, float margin) {
     using Device = decltype(device);
     BodyManager<Device, float> m(set);
     m.syncDeviceFull();
-    Contacts<Device, float, Frictionless> c;
+    Contacts<Device, float, ConeFriction> c;
     CollisionDetection<Device, float> cd;
-    cd.detect(m.device(), c, 0.02f);
+    cd.detect(m.device(), c, margin);
     ContactColouring<Device> col;
     col.build(m.device().view(), c.view());
-    VectorD1<std::uint32_t, device_is<Device>> order(c.size());
     std::vector<std::uint32_t> out(c.size());
     if constexpr (std::is_same_v<Device, device::gpu>)
       GPUSOLVE_CUDA_CHECK(cudaMemcpy(out.data(), col.order(), c.size() * 4, cudaMemcpyDeviceToHost));
     else
       std::copy(col.order(), col.order() + c.size(), out.begin());
     out.push_back(std::uint32_t(col.colours()));
+    out.push_back(std::uint32_t(col.offset(col.colours())));  // pairs coloured
     return out;
   };
-  const auto cpu = colour(device::cpu{});
-  const auto gpu = colour(device::gpu{});
+  const auto spheres = pile<float>(6, 5);
+  const auto cpu = colour(device::cpu{}, spheres, 0.02f);
+  const auto gpu = colour(device::gpu{}, spheres, 0.02f);
   REQUIRE(cpu.size() > 500);
-  CHECK(cpu.back() >= 6);
+  CHECK(cpu[cpu.size() - 2] >= 6);
+  CHECK(cpu.back() == cpu.size() - 2);  // every sphere contact is a pair of its own
   CHECK(gpu == cpu);  // same colours, same order: the colouring is deterministic on both
+  const auto boxes = gpusolve::bench::box_pyramid<float>(12);
+  const auto cpu_boxes = colour(device::cpu{}, boxes, 0.1f);
+  const auto gpu_boxes = colour(device::gpu{}, boxes, 0.1f);
+  REQUIRE(cpu_boxes.size() > 300);
+  CHECK(cpu_boxes.back() * 3 < cpu_boxes.size());  // most pairs hold four points
+  CHECK(gpu_boxes == cpu_boxes);
 }
 
 namespace {
