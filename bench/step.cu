@@ -2,7 +2,7 @@
 //
 // Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance,rolling]
 //                          [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
-//                          [--cpu-max 1000000] [--one-world] [--csv FILE]
+//                          [--cpu-max 1000000] [--one-world] [--reorder N] [--csv FILE]
 //
 // For each N the shared pile (bench/shared_pile.hpp, docs/piles.md)
 // falls for `settle` steps on the GPU at the library's defaults; every timing
@@ -40,6 +40,10 @@
 // --one-world: for sizes where two Worlds do not fit the GPU (100M spheres on an
 //   H200): only `step` and `phases`, in the World that settled (no copies of the
 //   state, host or device); queued and unattended print 0, the CPU backend is skipped.
+// --reorder N: every World puts its bodies in spatial order every N steps
+//   (ExecutionSettings::reorder_every): the settling World, and each timed one,
+//   which starts again from the BodySet's order and reorders first at its
+//   N-th step (within the 20 warm-up steps for N <= 20).
 // Also printed for jacobi10: contact-iterations per second of the solve phase.
 // CPU backend: the same World on device::cpu from the same state (host clock;
 // its kernels run as OpenMP loops where the build has OpenMP, the thread count
@@ -79,6 +83,7 @@ struct Options {
   long settle = 900, steps = 100, cpu_steps = 20;
   std::size_t cpu_max = 1000000;
   bool one_world = false;
+  std::size_t reorder = 0;
   std::string csv;
 };
 
@@ -228,8 +233,9 @@ Row time_backend(bool gpu, const rbd::BodySet<T>& set, const SolverSettings<T>& 
 }
 
 Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const rbd::BodySet<T>& set, long steps,
-              bool one_world) {
-  const SolverSettings<T> s = settings_for(mode, loop);
+              bool one_world, std::size_t reorder) {
+  SolverSettings<T> s = settings_for(mode, loop);
+  s.reorder_every = reorder;
   if (mode == "jacobi10") return time_backend<rbd::Jacobi<rbd::Gather>>(gpu, set, s, steps, one_world);
   if (mode == "atomic10") return time_backend<rbd::Jacobi<rbd::Atomic>>(gpu, set, s, steps, one_world);
   if (mode == "rolling")
@@ -244,7 +250,7 @@ int main(int argc, char** argv) {
   Options o;
   const char* usage =
       "[--n LIST] [--modes jacobi10,defaults,tolerance,rolling] [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
-      "[--one-world] [--csv FILE]";
+      "[--one-world] [--reorder N] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--n") o.n = parse_list<std::size_t>(option_value(argc, argv, i));
@@ -255,6 +261,7 @@ int main(int argc, char** argv) {
     else if (a == "--cpu-steps") o.cpu_steps = std::max(1L, std::stol(option_value(argc, argv, i)));
     else if (a == "--cpu-max") o.cpu_max = std::stoul(option_value(argc, argv, i));
     else if (a == "--one-world") o.one_world = true;
+    else if (a == "--reorder") o.reorder = std::stoul(option_value(argc, argv, i));
     else if (a == "--csv") o.csv = option_value(argc, argv, i);
     else usage_exit(argv[0], usage, a);
   }
@@ -278,6 +285,7 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
         SolverSettings<T> s;
         s.friction = T(0.5);
+        s.reorder_every = o.reorder;
         rbd::World<device::gpu, T> settle(set, s);
         settle.advance(std::size_t(o.settle));
         settle.syncHost();
@@ -293,7 +301,7 @@ int main(int argc, char** argv) {
             std::printf("... %s n=%zu %s loop %s, %ld steps\n", gpu ? "gpu" : "cpu", n, mode.c_str(),
                         gpu ? g.c_str() : "-", steps);
             std::fflush(stdout);
-            const Row r = time_mode(gpu, mode, g, set, steps, o.one_world);
+            const Row r = time_mode(gpu, mode, g, set, steps, o.one_world, o.reorder);
             std::printf("    %s %s %s: %zu contacts: step %.3f ms (queued %.3f ms, unattended %.3f ms, %zu steps "
                         "requeued), detection %.3f, solve %.3f, integration %.3f ms; %.1f iterations (unattended "
                         "%.1f), penetration %.4f%%, residual %.3g; %.0f bytes of GPU memory per body\n",

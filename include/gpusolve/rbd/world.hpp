@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/device.hpp"
@@ -15,6 +16,7 @@
 #include "gpusolve/rbd/statistics/accuracy.hpp"
 #include "gpusolve/rbd/bodies/body_manager.hpp"
 #include "gpusolve/rbd/bodies/body_set.hpp"
+#include "gpusolve/rbd/bodies/spatial_order.hpp"
 #include "gpusolve/rbd/collision/collision_detection.hpp"
 #include "gpusolve/rbd/contact_models/contact_model.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
@@ -134,12 +136,22 @@ class World {
   // Copies positions, orientations and velocities back into the BodySet.
   void syncHost();
 
+  // Puts the bodies on the device in spatial order (SpatialOrder: a Morton
+  // curve over the moving bodies' centres, the fixed ones after them), so that
+  // the contacts' reads of their two bodies stay near each other in memory.
+  // The BodySet's indices keep naming the same bodies (manager().slot(i) is
+  // body i's place in bodies()); the warm start follows its pairs. Also run
+  // every settings().reorder_every steps by advance(). Not for a distributed
+  // World (its ranks keep their bodies in global-id order): UnsupportedError.
+  void reorder_bodies();
+
   // Runs the solves distributed (rbd/distributed/ sets it): the bodies' sums
   // and every reduction of the solver go through `exchange` (nullptr: none).
   // Throws UnsupportedError naming the method where it does not run
   // distributed (solves_distributed: the Jacobi family with Gather or UpdateCache,
   // and substepping over it).
   void set_exchange(BodyExchange<T>* exchange);
+  bool distributed() const { return distributed_; }
   // The contacts the last step remembered for the next one's warm start, on
   // the host, and remember() of such contacts (after the BodySet was
   // rewritten and synced, their pairs renumbered and sorted): rbd/distributed/
@@ -195,7 +207,7 @@ class World {
       slot.marks_.mark(figures_written, stream_);
     } catch (const NonFiniteStateError& e) {  // found by detection, nothing moved: say which step it stopped
       slot.timed = false;                      // its marks were overwritten
-      throw NonFiniteStateError(e.body(), e.field(), steps_);
+      throw NonFiniteStateError(manager_.body(e.body()), e.field(), steps_);
     } catch (...) {
       slot.timed = false;
       throw;
@@ -302,7 +314,7 @@ class World {
       detail::require_usable(summary);
     } catch (const NonFiniteStateError& e) {
       contacts_.resize(summary.contacts < contacts_.capacity() ? summary.contacts : contacts_.capacity());
-      throw NonFiniteStateError(e.body(), e.field(), held);
+      throw NonFiniteStateError(manager_.body(e.body()), e.field(), held);
     }
     detection_.grow_for(summary);
     contacts_.resize(summary.contacts);
@@ -355,6 +367,8 @@ class World {
   std::size_t steps_ = 0, current_ = 0;
   bool timing_ = false;
   std::size_t materials_checked_ = ~std::size_t(0);  // the MaterialList version require_model_materials passed
+  SpatialOrder<Device, T> order_;  // reorder_bodies
+  bool distributed_ = false;       // set_exchange
   UnattendedSteps<Device> unattended_;
 };
 
@@ -376,6 +390,8 @@ void World<Device, T, Model, Method, Shapes>::set_settings(const SolverSettings<
       detail::bad_setting(s.rolling != T(0) ? "rolling" : "spinning",
                           "needs a contact model with angular rows (ConeRollingFriction); this World's has none");
   finish();
+  if (distributed_ && s.reorder_every != 0)
+    detail::bad_setting("reorder_every", "must be 0 in a distributed World (its ranks keep global-id order)");
   settings_ = s;
 }
 
@@ -388,7 +404,10 @@ StepStats<T> World<Device, T, Model, Method, Shapes>::step() {
 template <class Device, class T, class Model, class Method, ShapeMask Shapes>
 void World<Device, T, Model, Method, Shapes>::advance(std::size_t steps) {
   finish();
-  for (std::size_t k = 0; k < steps; ++k) queue_step(nullptr);
+  for (std::size_t k = 0; k < steps; ++k) {
+    if (settings_.reorder_every != 0 && steps_ != 0 && steps_ % settings_.reorder_every == 0) reorder_bodies();
+    queue_step(nullptr);
+  }
 }
 
 template <class Device, class T, class Model, class Method, ShapeMask Shapes>
@@ -439,11 +458,29 @@ void World<Device, T, Model, Method, Shapes>::syncHost() {
 }
 
 template <class Device, class T, class Model, class Method, ShapeMask Shapes>
+void World<Device, T, Model, Method, Shapes>::reorder_bodies() {
+  finish();
+  if (distributed_)
+    throw UnsupportedError("gpusolve: World::reorder_bodies: a distributed World keeps its bodies in global-id order");
+  Bodies<Device, T>& bodies = manager_.device();
+  const std::size_t n = bodies.size();
+  const std::uint32_t* order = order_.compute(bodies, stream_);
+  SpatialOrder<Device, T>::apply(bodies, order, stream_);
+  warm_.renumber(bodies.view(), order_.inverse(n, stream_), stream_);
+  std::vector<std::uint32_t> host(n);
+  detail::copy_with_host<Device>(host.data(), order, n, true, stream_);
+  manager_.reordered(host, stream_);
+}
+
+template <class Device, class T, class Model, class Method, ShapeMask Shapes>
 void World<Device, T, Model, Method, Shapes>::set_exchange(BodyExchange<T>* exchange) {
   finish();
-  if constexpr (solves_distributed<solver_type, T>::value)
+  if (exchange != nullptr && settings_.reorder_every != 0)
+    detail::bad_setting("reorder_every", "must be 0 in a distributed World (its ranks keep global-id order)");
+  if constexpr (solves_distributed<solver_type, T>::value) {
     solver_.set_exchange(exchange);
-  else if (exchange != nullptr)
+    distributed_ = exchange != nullptr;
+  } else if (exchange != nullptr)
     throw UnsupportedError(std::string("gpusolve: World::set_exchange: the method '") + Method::name +
                            "' does not run distributed (jacobi and apgd with the Gather or UpdateCache sums do, and "
                            "substepping over them)");

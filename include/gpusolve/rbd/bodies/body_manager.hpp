@@ -14,6 +14,7 @@
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/bodies/body_set.hpp"
 #include "gpusolve/rbd/bodies/derived_fields.hpp"
+#include "gpusolve/rbd/bodies/spatial_order.hpp"
 #include "gpusolve/math/quaternion.hpp"
 #include "gpusolve/math/rotation.hpp"
 
@@ -34,6 +35,11 @@ inline constexpr std::size_t default_rebuild_threshold = 256;
 // them have accumulated; then the BodySet is compacted (later bodies move down,
 // keeping their order) and everything is copied again. Bodies in front of the
 // first added one keep their shape and mass data on the device.
+// The device copy may hold the bodies in an order of its own (reordered(): a
+// World keeps them in spatial order); slot() and body() map between a body's
+// index in the BodySet and its slot on the device, and every sync goes through
+// them, so the BodySet's indices always name the same bodies. A compaction
+// (removed bodies past the threshold) starts again from the BodySet's order.
 // Device may be device::cpu, which makes the device copy a second host copy.
 // `compiled`: the shape kinds its user was compiled for (World's Shapes); a
 // body of another kind (or a compound with such a part) is refused at sync.
@@ -64,8 +70,26 @@ class BodyManager {
       throw SizeMismatchError("gpusolve: BodyManager::syncHost: the BodySet changed size since the "
                               "last syncDevice; announce changes with bodyAdded/bodyRemoved and sync");
     copy_fields(staging_, device_, 0, n, true, stream);
-    for (std::size_t i = 0; i < n; ++i) unpack(i);
+    for (std::size_t i = 0; i < n; ++i) unpack(i, slot(i));
   }
+
+  // The device bodies were put in `order` (their slot k now holds what slot
+  // order[k] held; SpatialOrder): the host's mirror follows, and so do the
+  // slots of the BodySet's bodies.
+  void reordered(const std::vector<std::uint32_t>& order, stream_t stream = stream_t{}) {
+    const std::size_t n = device_.size();
+    if (order.size() != n)
+      throw SizeMismatchError("gpusolve: BodyManager::reordered: the order must name every body's slot once");
+    SpatialOrder<device::cpu, T>::apply(staging_, order.data(), stream);
+    std::vector<std::uint32_t> body_of(n);
+    for (std::size_t k = 0; k < n; ++k) body_of[k] = std::uint32_t(body(order[k]));
+    slot_of_.assign(n, 0);
+    for (std::size_t k = 0; k < n; ++k) slot_of_[body_of[k]] = std::uint32_t(k);
+    body_of_ = std::move(body_of);
+  }
+  // The device slot of the BodySet's body i, and the BodySet index of slot k.
+  std::size_t slot(std::size_t i) const { return slot_of_.empty() ? i : slot_of_[i]; }
+  std::size_t body(std::size_t k) const { return body_of_.empty() ? k : body_of_[k]; }
 
   Bodies<Device, T>& device() { return device_; }
   const BodySet<T>& host() const { return host_; }
@@ -101,8 +125,11 @@ class BodyManager {
       if (recs[i].status != removed) ++removed_count_;
       recs[i].status = removed;
     }
-    std::size_t first = full ? 0 : device_.size();  // bodies past the old end are new
+    const std::size_t before = device_.size();
+    std::size_t first = full ? 0 : before;  // bodies past the old end are new
     for (std::size_t i : added_) first = std::min(first, check_index(i, "bodyAdded"));
+    // A body replaced in place sits in a slot of its own order: copy all.
+    if (!slot_of_.empty() && first < before) first = 0;
     added_.clear();
     removed_.clear();
     if (removed_count_ >= threshold_) {
@@ -111,8 +138,11 @@ class BodyManager {
       removed_count_ = 0;
       rep.rebuilt = true;
       first = 0;
+      slot_of_.clear(), body_of_.clear();  // the BodySet's order again
     }
     const std::size_t n = recs.size();
+    if (!slot_of_.empty())  // new bodies take the slots past the old end, in order
+      for (std::size_t i = before; i < n; ++i) slot_of_.push_back(std::uint32_t(i)), body_of_.push_back(std::uint32_t(i));
     ShapeMask shapes = 0;
     for (std::size_t i = 0; i < n; ++i)
       if (recs[i].status != removed) {
@@ -130,7 +160,7 @@ class BodyManager {
     staging_.resize(n);
     device_.shapes = staging_.shapes = shapes;
     first = std::min(first, n);
-    for (std::size_t i = 0; i < n; ++i) pack(i, i >= first);
+    for (std::size_t i = 0; i < n; ++i) pack(i, slot(i), i >= first);
     update_derived(device::cpu{}, staging_.view(), 0, n);
     copy_fields(device_, staging_, 0, first, false, stream);
     copy_fields(device_, staging_, first, n, true, stream);
@@ -165,30 +195,30 @@ class BodyManager {
     });
   }
 
-  // Writes record i into the staging store: per-step fields, and all if `all`.
-  void pack(std::size_t i, bool all) {
+  // Writes record i into slot k of the staging store: per-step fields, and all if `all`.
+  void pack(std::size_t i, std::size_t k, bool all) {
     const Body<T>& r = host_[i];
     auto& s = staging_;
-    s.status(i) = r.status;
+    s.status(k) = r.status;
     for (std::size_t c = 0; c < 3; ++c) {
-      s.pos(i, c) = r.pos[c];
-      s.v(i, c) = r.v[c];
-      s.w(i, c) = r.w[c];
-      s.force(i, c) = r.force[c];
-      s.torque(i, c) = r.torque[c];
+      s.pos(k, c) = r.pos[c];
+      s.v(k, c) = r.v[c];
+      s.w(k, c) = r.w[c];
+      s.force(k, c) = r.force[c];
+      s.torque(k, c) = r.torque[c];
     }
-    for (std::size_t c = 0; c < 4; ++c) s.q(i, c) = r.q[c];
-    s.motion(i) = r.motion;
+    for (std::size_t c = 0; c < 4; ++c) s.q(k, c) = r.q[c];
+    s.motion(k) = r.motion;
     // Shape and mass are needed by update_derived even when not copied.
-    s.shape(i) = r.shape;
-    for (std::size_t c = 0; c < shape_param_rows; ++c) s.shape_param(i, c) = r.shape_param[c];
+    s.shape(k) = r.shape;
+    for (std::size_t c = 0; c < shape_param_rows; ++c) s.shape_param(k, c) = r.shape_param[c];
     if (!all) return;
-    s.inv_mass(i) = r.inv_mass;
-    s.first_part(i) = r.first_part;
-    s.material(i) = r.material;
+    s.inv_mass(k) = r.inv_mass;
+    s.first_part(k) = r.first_part;
+    s.material(k) = r.material;
     for (std::size_t c = 0; c < 9; ++c) {
-      s.inertia(i, c) = r.inertia[c];
-      s.inv_inertia_body(i, c) = r.inv_inertia_body[c];
+      s.inertia(k, c) = r.inertia[c];
+      s.inv_inertia_body(k, c) = r.inv_inertia_body[c];
     }
   }
 
@@ -210,18 +240,19 @@ class BodyManager {
     device_.parts = s;
   }
 
-  void unpack(std::size_t i) {
+  // Reads record i from slot k of the staging store.
+  void unpack(std::size_t i, std::size_t k) {
     Body<T>& r = host_[i];
     const auto& s = staging_;
     for (std::size_t c = 0; c < 3; ++c) {
-      r.pos[c] = s.pos(i, c);
-      r.v[c] = s.v(i, c);
-      r.w[c] = s.w(i, c);
-      r.force[c] = s.force(i, c);
-      r.torque[c] = s.torque(i, c);
+      r.pos[c] = s.pos(k, c);
+      r.v[c] = s.v(k, c);
+      r.w[c] = s.w(k, c);
+      r.force[c] = s.force(k, c);
+      r.torque[c] = s.torque(k, c);
     }
-    for (std::size_t c = 0; c < 4; ++c) r.q[c] = s.q(i, c);
-    r.motion = s.motion(i);
+    for (std::size_t c = 0; c < 4; ++c) r.q[c] = s.q(k, c);
+    r.motion = s.motion(k);
   }
 
   BodySet<T>& host_;
@@ -229,6 +260,7 @@ class BodyManager {
   ShapeMask compiled_;
   std::size_t removed_count_ = 0;
   std::vector<std::size_t> added_, removed_;
+  std::vector<std::uint32_t> slot_of_, body_of_;  // empty: slot i holds body i
   Bodies<device::cpu, T> staging_;
   Bodies<Device, T> device_;
 };

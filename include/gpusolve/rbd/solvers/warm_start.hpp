@@ -7,7 +7,11 @@
 #include <vector>
 
 #include <thrust/binary_search.h>
+#include <thrust/copy.h>
 #include <thrust/execution_policy.h>
+#include <thrust/gather.h>
+#include <thrust/sequence.h>
+#include <thrust/sort.h>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
@@ -135,6 +139,34 @@ struct CarryImpulse {
   }
 };
 
+// A remembered pair after the bodies moved to new slots (slot s to moved[s];
+// SpatialOrder): its key in the new numbering, with the roles detection gives
+// the pair there: a moving body before a fixed one, else the lower slot first
+// (ContactWalk::candidates). Where the roles swap, the kept values, world
+// vectors acting on body a (impulse, angular impulse, anchor slip), change
+// sign; a frictionless normal impulse is the same either way. The points keep
+// their feature ids, which for a box pair that swapped name other features:
+// those start cold for one step.
+template <class Model, class BV, class T>
+struct RenumberPair {
+  BV b;  // in the new order
+  std::uint64_t* keys;
+  VectorD2View<T> p;
+  const std::uint32_t* moved;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    std::uint32_t a = moved[pair_a(keys[i])], c = moved[pair_b(keys[i])];
+    const bool fixed_a = !b.moving(a), fixed_c = !b.moving(c);
+    const bool swap = fixed_a != fixed_c ? fixed_a : a > c;
+    if (swap) {
+      const std::uint32_t t = a;
+      a = c, c = t;
+      if constexpr (Model::linear_rows == 3)
+        for (std::size_t r = 0; r < p.size_y(); ++r) p(i, r) = -p(i, r);
+    }
+    keys[i] = pair_key(a, c);
+  }
+};
+
 }  // namespace detail
 
 // Remembered contacts on the host (WarmStart::host_copy): per contact its
@@ -223,6 +255,27 @@ class WarmStart {
     live(0) = std::uint32_t(count_);
     keys_.resize(count_), features_.resize(count_), p_.resize(count_, kept.width), live_.resize(1);
     keys_ = keys, features_ = features, p_ = p, live_ = live;
+  }
+  // The bodies of `b` were put in a new order, slot s moving to moved[s] (in
+  // the backend's memory): the remembered pairs follow them (detail::RenumberPair)
+  // and are sorted again, so the next carry() finds them.
+  template <class BV>
+  void renumber(const BV& b, const std::uint32_t* moved, stream_t stream = stream_t{}) {
+    const std::size_t n = count_ == 0 ? 0 : detail::read_back<Device>(live_.data(), 0, stream);
+    if (n == 0) return;
+    launch(Device{}, n, detail::RenumberPair<Model, BV, T>{b, keys_.data(), p_.view(), moved}, stream);
+    const auto policy = detail::thrust_policy(Device{}, stream);
+    VectorD1<std::uint32_t, device_is<Device>> order(n), features(n);
+    VectorD1<T, device_is<Device>> row(n);
+    thrust::sequence(policy, order.data(), order.data() + n);
+    thrust::sort_by_key(policy, keys_.data(), keys_.data() + n, order.data());
+    thrust::gather(policy, order.data(), order.data() + n, features_.data(), features.data());
+    thrust::copy(policy, features.data(), features.data() + n, features_.data());
+    for (std::size_t r = 0; r < p_.size_y(); ++r) {
+      T* values = p_.data() + r * p_.pitch();
+      thrust::gather(policy, order.data(), order.data() + n, values, row.data());
+      thrust::copy(policy, row.data(), row.data() + n, values);
+    }
   }
   // The bound of the contacts remembered (their count is written where remember runs).
   std::size_t remembered() const { return count_; }
