@@ -186,6 +186,12 @@ TEST_CASE("distributed: a pile of boxes steps as one World does, under Jacobi an
   check_matches(compare<Substepping<>>(box_pile(), SolverSettings<double>{}, 60), 75);
 }
 
+TEST_CASE("distributed: AcceleratedCG steps as one World does (its sums, minimum and residual over the ranks)",
+          "[distributed]") {
+  check_matches(compare<AcceleratedCG>(sphere_pile(), SolverSettings<double>{}, 60), 0);
+  check_matches(compare<AcceleratedCG>(box_pile(), SolverSettings<double>{}, 60), 75);
+}
+
 TEST_CASE("distributed: a pile of capsules steps as one World does", "[distributed]") {
   // Landed: 32 points on the floor, 16 crossings of the first two layers.
   check_matches(compare<AcceleratedJacobi<Gather>>(capsule_pile(), SolverSettings<double>{}, 60), 48);

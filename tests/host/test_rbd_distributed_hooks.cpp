@@ -101,6 +101,13 @@ TEST_CASE("distributed hooks: an exchange that adds nothing gives the solve with
   CHECK(jacobi.reductions > 0);  // the residual checks
   CHECK(apgd.reductions > jacobi.reductions);  // and the momentum's sums
   CHECK(none.combines == 0);
+  CountingExchange<double> cg;
+  const auto [x_cg, it_cg] = run(AcceleratedCG{}, false, none);
+  const auto [y_cg, jt_cg] = run(AcceleratedCG{}, true, cg);
+  CHECK(y_cg == x_cg);
+  CHECK(jt_cg == it_cg);
+  CHECK(cg.combines >= it_cg);  // the direction's body sums, each iteration
+  CHECK(cg.reductions > 5 * it_cg);  // its sums, step bound and residual checks
 }
 
 TEST_CASE("distributed hooks: a method that does not run distributed says so", "[rbd_distributed]") {

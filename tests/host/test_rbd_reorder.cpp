@@ -102,7 +102,7 @@ TEST_CASE("spatial order: moving bodies along a Morton curve, fixed ones after t
 TEST_CASE("reorder_bodies: the BodySet's indices keep their bodies and the steps after it are the steps without it",
           "[rbd_reorder][shapes][compound]") {
   SolverSettings<double> s;
-  s.max_iterations = 1000, s.check_every = 1, s.tolerance = 1e-8;
+  s.max_iterations = 400, s.check_every = 1, s.tolerance = 1e-8;
   SECTION("spheres: the same steps") {
     BodySet<double> plain_set = shuffled(pile<double>(5, 4));
     BodySet<double> ordered_set = plain_set;
@@ -118,7 +118,7 @@ TEST_CASE("reorder_bodies: the BodySet's indices keep their bodies and the steps
   SECTION("every shape: the same bodies in the same state, and the heap settles alike") {
     BodySet<double> plain_set = shuffled(mixed_heap<double>(4, 3));  // compounds too
     BodySet<double> ordered_set = plain_set;
-    World<device::cpu, double> plain(plain_set, s), ordered(ordered_set, s);
+    World<device::cpu, double> plain(plain_set, SolverSettings<double>{}), ordered(ordered_set, SolverSettings<double>{});
     plain.advance(100), ordered.advance(100);
     ordered.reorder_bodies();
     // Nothing moved: the BodySet reads the same, and body i sits in slot(i).
@@ -144,13 +144,15 @@ TEST_CASE("reorder_bodies: the BodySet's indices keep their bodies and the steps
   }
 }
 
-TEST_CASE("reorder_bodies: the warm start follows its pairs through a reorder (sphere pile)", "[rbd_reorder]") {
-  BodySet<double> plain_set = shuffled(pile<double>(5, 4));
+TEST_CASE("reorder_bodies: the warm start follows its pairs through a reorder (spheres at rest)", "[rbd_reorder]") {
+  // One layer of touching spheres on the floor, records shuffled: at rest, so
+  // a solve that starts from the last impulses converges at once.
+  BodySet<double> plain_set = shuffled(pile<double>(8, 1));
   BodySet<double> ordered_set = plain_set, cold_set = plain_set;
   SolverSettings<double> s;
-  s.max_iterations = 2000, s.check_every = 1, s.tolerance = 1e-7;
+  s.max_iterations = 1000, s.check_every = 1, s.tolerance = 1e-9, s.warm_start = 1;
   World<device::cpu, double> plain(plain_set, s), ordered(ordered_set, s), cold(cold_set, s);
-  plain.advance(300), ordered.advance(300), cold.advance(300);
+  plain.advance(50), ordered.advance(50), cold.advance(50);
   ordered.reorder_bodies();
   // The same pile with the warm start forgotten at the reorder: what it would cost.
   SolverSettings<double> forget = s;
@@ -159,8 +161,9 @@ TEST_CASE("reorder_bodies: the warm start follows its pairs through a reorder (s
   const auto st0 = plain.step(), st1 = ordered.step(), st2 = cold.step();
   INFO("iterations after the reorder: " << st1.solver.iterations << ", without it " << st0.solver.iterations
                                         << ", starting cold " << st2.solver.iterations);
+  CHECK(st1.solver.contacts == st0.solver.contacts);
   CHECK(std::abs(double(st1.solver.iterations) - double(st0.solver.iterations)) <= 1);
-  CHECK(double(st2.solver.iterations) > 1.15 * double(st0.solver.iterations));
+  CHECK(st2.solver.iterations > 5 * st0.solver.iterations);
 }
 
 TEST_CASE("reorder_every: added and removed bodies, syncHost and a NaN's error speak of BodySet indices",

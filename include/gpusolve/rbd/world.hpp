@@ -482,8 +482,8 @@ void World<Device, T, Model, Method, Shapes>::set_exchange(BodyExchange<T>* exch
     distributed_ = exchange != nullptr;
   } else if (exchange != nullptr)
     throw UnsupportedError(std::string("gpusolve: World::set_exchange: the method '") + Method::name +
-                           "' does not run distributed (jacobi and apgd with the Gather or UpdateCache sums do, and "
-                           "substepping over them)");
+                           "' does not run distributed (jacobi and apgd with the Gather or UpdateCache sums do, "
+                           "substepping over them, and apgd-cg)");
 }
 
 template <class Device, class T, class Model, class Method, ShapeMask Shapes>

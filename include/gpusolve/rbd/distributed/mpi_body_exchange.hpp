@@ -113,9 +113,13 @@ class MpiBodyExchange final : public BodyExchange<T> {
   void reduce(T* value, ExchangeOp op, stream_t stream) override {
     const auto start = std::chrono::steady_clock::now();
     T x = detail::read_back<Device>(value, 0, stream);
-    MPI_Allreduce(MPI_IN_PLACE, &x, 1, detail::mpi_type<T>(), op == ExchangeOp::maximum ? MPI_MAX : MPI_SUM, comm_);
+    MPI_Allreduce(MPI_IN_PLACE, &x, 1, detail::mpi_type<T>(), mpi_op(op), comm_);
     detail::copy_with_host<Device>(value, &x, 1, false, stream);
     seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  static MPI_Op mpi_op(ExchangeOp op) {
+    return op == ExchangeOp::maximum ? MPI_MAX : op == ExchangeOp::minimum ? MPI_MIN : MPI_SUM;
   }
 
   // Seconds spent in combine() and reduce() since the last call.

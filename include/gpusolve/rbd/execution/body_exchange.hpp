@@ -11,7 +11,7 @@
 namespace gpusolve::rbd {
 
 // The reductions a rank's solve needs to agree with the others.
-enum class ExchangeOp { maximum, sum };
+enum class ExchangeOp { maximum, minimum, sum };
 
 template <class T>
 class BodyExchange {

@@ -28,7 +28,9 @@
 // solve may stop there. Scalars stay in the backend's memory; the host reads
 // only the residual at checks. It is for mass ratios APGD converges slowly on
 // (a 1:1000 column, tests/host/test_rbd_methods.cpp; docs/tuning/solve.md).
-// ConeFriction only.
+// ConeFriction only. Runs distributed (set_exchange): its sums over contacts
+// and bodies and its residual are reduced over the ranks, the bodies'
+// direction sums combined; a shadow's p^T W p is its owner's to count.
 #pragma once
 
 #include <cmath>
@@ -281,6 +283,7 @@ struct BodyDirection {
     }
     for (std::size_t c = 0; c < 3; ++c) dvp(k, c) = sv[c], dwp(k, c) = sw[c];
     if (state[mode_slot] > T(0)) {
+      if (b.status[k] == shadow) return;  // its owner's rank counts it
       const math::Vector3<T> w(sw[0], sw[1], sw[2]);
       const math::Vector3<T> Iw = math::inverse_spd(math::load9<T>(b.inv_inertia, k)) * w;
       pwp[k] = (sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]) / b.inv_mass[k] + math::dot(w, Iw);
@@ -429,6 +432,12 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
   static constexpr double default_omega = 0.3;  // APGD's (jacobi.hpp)
   static constexpr double gamma = 0.1;          // MPRGP's proportioning constant
   static constexpr double max_hold = 32;        // the longest run of APGD steps after a truncated CG step
+
+  // A distributed solve (rbd/distributed/): every sum and the residual are
+  // reduced over the ranks through `exchange` (nullptr: none), and the bodies'
+  // sums combined; a rank without contacts still takes part in each.
+  void set_exchange(BodyExchange<T>* exchange) { exchange_ = exchange; }
+
   using typename Base::BodyStore;
   using typename Base::BV;
   using typename Base::ContactStore;
@@ -440,7 +449,7 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
     SolverStats<T> stats;
     const BV b = bodies.view();
     const CV c = contacts.view();
-    if (!this->begin(b, c, s, stats, stream)) return stats;
+    if (!this->begin(b, c, s, stats, stream) && exchange_ == nullptr) return stats;  // a rank takes part, contacts or not
     const std::size_t nc = c.size(), nb = b.size(), n = nc > nb ? nc : nb;
     const Device dev{};
     acc_.prepare(b, c, stream);
@@ -452,6 +461,7 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
     const CalcNextPhi<Model, BV, CV, T> phi{b, c, rhs, T(1) / s.dt, s.correction};
     const auto sum = [&](std::size_t count, const VectorD1View<T>& terms, std::size_t slot) {
       alg_.reduce_values(terms.ptr, count, T(0), detail::PlusOp{}, state + slot, stream);
+      if (exchange_ != nullptr) exchange_->reduce(state + slot, ExchangeOp::sum, stream);
     };
     auto attempt = [&](T omega, SolverStats<T>& st) {
       start_attempt(b, c, contacts, from_x && st.retries == 0, stream);
@@ -476,16 +486,17 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
         launch(dev, nc, direction, stream);
         alg_.reduce_values(step_.data(), nc, std::numeric_limits<T>::infinity(), detail::MinOp{},
                            state + acg::alpha_max_slot, stream);
+        if (exchange_ != nullptr) exchange_->reduce(state + acg::alpha_max_slot, ExchangeOp::minimum, stream);
         sum(nc, uphill_.view(), acg::momentum_slot + detail::uphill_slot);
         sum(nc, descent_.view(), acg::descent_slot);
-        body_phase(detail::LaunchExec<Device, T>{stream});
+        body_phase(launched(stream));
         sum(nb, pwp_.view(), acg::pwp_slot);
         launch(dev, 1, acg::StepLength<T>{state, measure}, stream);
         advance.classify = !measure;
         launch(dev, n, advance, stream);
         if (measure) launch(dev, nc, acg::ClassifyPass<Model, BV, CV, T>{cl, true}, stream);
         classified();
-        if (measure && monitor.stop(it, this->residual(b, nc, stream))) break;
+        if (measure && monitor.stop(it, this->residual(b, nc, stream, exchange_))) break;
       }
     };
     solve_relaxed(s, omega_of<AcceleratedCGSolver>(s), b, this->start_, stats, attempt, stream);
@@ -494,6 +505,8 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
 
  private:
   using Sink = decltype(std::declval<Accumulator<Gather, Device, T>&>().sink());
+
+  detail::LaunchExec<Device, T> launched(stream_t stream) { return {stream, nullptr, exchange_}; }
 
   // Scratch for nc contacts and nb bodies, kept between solves.
   void reserve(std::size_t nc, std::size_t nb) {
@@ -511,7 +524,7 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
     const Device dev{};
     if (warm) {
       launch(dev, c.size(), ApplyImpulses<Model, BV, CV, Sink, T>{b, c, acc_.sink()}, stream);
-      acc_.apply(b, stream);
+      acc_.program(b)(launched(stream));
     } else {
       contacts.x.fill(T(0), stream);
     }
@@ -526,6 +539,7 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
 
   Accumulator<Gather, Device, T> acc_;
   detail::DeviceAlgorithms<Device> alg_;
+  BodyExchange<T>* exchange_ = nullptr;  // set_exchange
   VectorD2<T, device_is<Device>> rhs_, p_, px_, pg_, dvp_, dwp_, pv_, pw_;  // rhs_: each contact's gradient
   VectorD1<T, device_is<Device>> rz_, chop_, step_, uphill_, descent_, pwp_, state_;
 };

@@ -46,8 +46,11 @@ class ContactSolverBase {
     return true;
   }
   InverseBlocks<Model, BV, CV, T> inverse_blocks(const BV& b, const CV& c) const { return {b, c}; }
-  // The largest residual of this iteration's contacts (+inf for a non-finite velocity).
-  T residual(const BV& b, std::size_t contacts, stream_t stream) { return check_(b, residual_.view(), contacts, stream); }
+  // The largest residual of this iteration's contacts (+inf for a non-finite
+  // velocity), over the ranks where an `exchange` shares the solve.
+  T residual(const BV& b, std::size_t contacts, stream_t stream, BodyExchange<T>* exchange = nullptr) {
+    return check_(b, residual_.view(), contacts, stream, exchange);
+  }
   // Its terms, for a program that takes their maximum itself (over max(contacts' bound, bodies) indices).
   detail::ResidualOrNotFinite<BV, T> residual_terms(const BV& b, const CV& c) {
     return {b, residual_.view(), c.count};

@@ -13,6 +13,7 @@
 #include "gpusolve/rbd/contacts/extent.hpp"
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/rbd/execution/backend.hpp"
+#include "gpusolve/rbd/execution/body_exchange.hpp"
 #include "gpusolve/rbd/execution/device_algorithms.hpp"
 #include "gpusolve/rbd/settings/solver_settings.hpp"
 #include "gpusolve/rbd/statistics/solver_stats.hpp"
@@ -48,16 +49,19 @@ struct ResidualOrNotFinite {
 
 // The measured LCP residual of a solver: the largest residual of the contacts
 // (ResolveCollisions with measure set), +inf when any body velocity is not
-// finite. One reduction per check; its scratch is kept between checks.
+// finite; with an `exchange` (a distributed solve), the largest over the ranks.
+// One reduction per check; its scratch is kept between checks.
 template <class Device, class T>
 class ResidualCheck {
  public:
   template <class BV>
-  T operator()(const BV& b, VectorD1View<T> residual, std::size_t contacts, stream_t stream = stream_t{}) {
+  T operator()(const BV& b, VectorD1View<T> residual, std::size_t contacts, stream_t stream = stream_t{},
+               BodyExchange<T>* exchange = nullptr) {
     const std::size_t n = contacts > b.size() ? contacts : b.size();
     if (out_.size_x() == 0) out_.resize(1);
     algorithms_.reduce_into(n, detail::ResidualOrNotFinite<BV, T>{b, residual, {contacts}}, T(0), detail::MaxOp{},
                             out_.data(), stream);
+    if (exchange != nullptr) exchange->reduce(out_.data(), ExchangeOp::maximum, stream);
     return detail::read_back<Device>(out_.data(), 0, stream);
   }
   // Bytes of temporary storage held (GPU only; stays put once warm).
