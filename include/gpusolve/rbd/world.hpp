@@ -140,7 +140,8 @@ class World {
   // curve over the moving bodies' centres, the fixed ones after them), so that
   // the contacts' reads of their two bodies stay near each other in memory.
   // The BodySet's indices keep naming the same bodies (manager().slot(i) is
-  // body i's place in bodies()); the warm start follows its pairs. Also run
+  // body i's place in bodies()); the warm start follows its pairs; contacts()
+  // keeps the last step's slots until the next step detects again. Also run
   // every settings().reorder_every steps by advance(). Not for a distributed
   // World (its ranks keep their bodies in global-id order): UnsupportedError.
   void reorder_bodies();
