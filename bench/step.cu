@@ -38,13 +38,16 @@
 //   phases   medians of the World's per-phase event times (set_phase_timing) over
 //            as many more steps.
 // --one-world: for sizes where two Worlds do not fit the GPU (100M spheres on an
-//   H200): only `step` and `phases`, in the World that settled (no copies of the
-//   state, host or device); queued and unattended print 0, the CPU backend is skipped.
+//   H200): only `step` and `phases`, each mode in one World built from the
+//   settled state with none beside it (no queued, unattended or counted World,
+//   no copies of the state for them); queued and unattended print 0, the CPU
+//   backend is skipped.
 // --reorder N: every World puts its bodies in spatial order every N steps
 //   (ExecutionSettings::reorder_every): the settling World, and each timed one,
 //   which starts again from the BodySet's order and reorders first at its
 //   N-th step (within the 20 warm-up steps for N <= 20).
-// Also printed for jacobi10: contact-iterations per second of the solve phase.
+// Also printed, and in the CSV: the solve's contact-iterations per second (contacts times
+// iterations over the solve phase's time).
 // CPU backend: the same World on device::cpu from the same state (host clock;
 // its kernels run as OpenMP loops where the build has OpenMP, the thread count
 // is printed), after 2 warm-up steps; sizes above --cpu-max are skipped.
@@ -277,7 +280,7 @@ int main(int argc, char** argv) {
                               "backend,n,mode,loop,contacts,steps,ms_step_median,ms_step_queued,ms_detection,ms_solve,"
                               "ms_integration,iterations_mean,max_penetration,residual_median,cpu_threads,gpu,"
                               "ms_step_unattended,steps_requeued,iterations_mean_unattended,device_bytes,"
-                              "device_bytes_per_body");
+                              "device_bytes_per_body,reorder_every,g_contact_iterations_per_s");
     for (std::size_t n : o.n) {
       rbd::BodySet<T> set = shared_pile<T>(n);
       {
@@ -308,16 +311,16 @@ int main(int argc, char** argv) {
                         gpu ? "gpu" : "cpu", mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.step_ms, r.queued_ms,
                         r.unattended_ms, r.requeued, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations,
                         r.unattended_iterations, 100 * r.penetration, r.residual, double(r.device_bytes) / double(n));
-            if (r.solve_ms > 0)
-              std::printf("    solve: %.2f G contact-iterations per second\n",
-                          double(r.contacts) * r.iterations / (r.solve_ms * 1e6));
+            const double rate = r.solve_ms > 0 ? double(r.contacts) * r.iterations / (r.solve_ms * 1e6) : 0.0;
+            if (rate > 0) std::printf("    solve: %.2f G contact-iterations per second\n", rate);
             std::fflush(stdout);
             if (csv)
-              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s,%.5f,%zu,%.2f,%zu,%.1f\n",
+              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s,%.5f,%zu,%.2f,%zu,%.1f,%zu,%.3f\n",
                            gpu ? "gpu" : "cpu", n, mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.steps, r.step_ms,
                            r.queued_ms, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations, r.penetration,
                            r.residual, cpu_threads, gpu_name.c_str(), r.unattended_ms, r.requeued,
-                           r.unattended_iterations, r.device_bytes, double(r.device_bytes) / double(n));
+                           r.unattended_iterations, r.device_bytes, double(r.device_bytes) / double(n), o.reorder,
+                           rate);
           }
       }
     }

@@ -47,7 +47,9 @@ def main(argv):
         return r["loop"] if "loop" in r else "graphs " + r["graphs"]
 
     def label(r):
-        return r["backend"] + " " + r["mode"] + ("" if r["backend"] == "cpu" else ", " + loop(r))
+        reorder = r.get("reorder_every", "0") or "0"
+        return (r["backend"] + " " + r["mode"] + ("" if r["backend"] == "cpu" else ", " + loop(r)) +
+                ("" if reorder == "0" else ", reordered every " + reorder))
 
     modes = sorted({r["mode"] for r in rows})
     colour = {m: f"C{k}" for k, m in enumerate(modes)}  # a colour per mode, a line style per loop
