@@ -143,8 +143,9 @@ struct InColour {
   GPUSOLVE_HD void operator()(std::size_t j) const {
     const std::size_t first = colours.bounds[k];
     if (first + j >= colours.bounds[k + 1]) return;
-    const std::size_t i = colours.order[first + j], n = c.size();
-    for (std::size_t p = i; p < n && c.same_pair(p, i); ++p) f(p);
+    const std::uint32_t i = colours.order[first + j], a = c.a[i], b = c.b[i];
+    const std::size_t n = c.size();
+    for (std::size_t p = i; p < n && c.a[p] == a && c.b[p] == b; ++p) f(p);
   }
 };
 
