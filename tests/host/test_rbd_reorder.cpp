@@ -203,6 +203,27 @@ TEST_CASE("reorder_every: added and removed bodies, syncHost and a NaN's error s
   }
 }
 
+TEST_CASE("reorder_bodies, then a compaction of removed bodies: the BodySet's order again, the same bodies",
+          "[rbd_reorder]") {
+  BodySet<double> plain_set = shuffled(pile<double>(12, 2));  // 288 spheres
+  BodySet<double> ordered_set = plain_set;
+  SolverSettings<double> s;
+  s.max_iterations = 200, s.check_every = 1, s.tolerance = 1e-9;
+  World<device::cpu, double> plain(plain_set, s), ordered(ordered_set, s);
+  plain.advance(20), ordered.advance(20);
+  ordered.reorder_bodies();
+  for (auto* w : {&plain, &ordered})
+    for (std::size_t i = 1; i <= default_rebuild_threshold; ++i) w->manager().bodyRemoved(i);
+  const SyncReport a = plain.manager().syncDevice(), b = ordered.manager().syncDevice();
+  REQUIRE(a.rebuilt);
+  REQUIRE(b.rebuilt);
+  REQUIRE(ordered_set.size() == plain_set.size());
+  for (std::size_t i = 0; i < ordered_set.size(); ++i) REQUIRE(ordered.manager().slot(i) == i);
+  CHECK(largest_difference(state(plain, plain_set), state(ordered, ordered_set)) == 0);
+  plain.advance(10), ordered.advance(10);
+  CHECK(largest_difference(state(plain, plain_set), state(ordered, ordered_set)) < 1e-8);
+}
+
 namespace {
 
 // A BodyExchange that shares nothing: enough to make a World distributed.
