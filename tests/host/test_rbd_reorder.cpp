@@ -203,6 +203,20 @@ TEST_CASE("reorder_every: added and removed bodies, syncHost and a NaN's error s
   }
 }
 
+TEST_CASE("reorder_every under advance_unattended: the steps of advance(), reordered at the same steps",
+          "[rbd_reorder][unattended]") {
+  BodySet<double> attended_set = shuffled(pile<double>(4, 3));
+  BodySet<double> unattended_set = attended_set;
+  SolverSettings<double> every;
+  every.reorder_every = 7;
+  World<device::cpu, double> attended(attended_set, every), unattended(unattended_set, every);
+  attended.advance(40);
+  unattended.advance_unattended(25), unattended.advance_unattended(15);
+  CHECK(largest_difference(state(attended, attended_set), state(unattended, unattended_set)) == 0);
+  for (std::size_t i = 0; i < attended_set.size(); ++i)
+    REQUIRE(unattended.manager().slot(i) == attended.manager().slot(i));
+}
+
 TEST_CASE("reorder_bodies, then a compaction of removed bodies: the BodySet's order again, the same bodies",
           "[rbd_reorder]") {
   BodySet<double> plain_set = shuffled(pile<double>(12, 2));  // 288 spheres

@@ -142,7 +142,8 @@ class World {
   // The BodySet's indices keep naming the same bodies (manager().slot(i) is
   // body i's place in bodies()); the warm start follows its pairs; contacts()
   // keeps the last step's slots until the next step detects again. Also run
-  // every settings().reorder_every steps by advance(). Not for a distributed
+  // every settings().reorder_every steps by advance() and advance_unattended()
+  // (which waits for the steps queued before each reorder). Not for a distributed
   // World (its ranks keep their bodies in global-id order): UnsupportedError.
   void reorder_bodies();
 
@@ -218,6 +219,11 @@ class World {
     slot.timed = timing_;
     current_ = k;
     ++steps_;
+  }
+
+  // Whether the next step is one before which reorder_every puts the bodies in order.
+  bool reorder_due() const {
+    return settings_.reorder_every != 0 && steps_ != 0 && steps_ % settings_.reorder_every == 0;
   }
 
   // A rolling or spinning resistance that the contact model has no rows for
@@ -406,7 +412,7 @@ template <class Device, class T, class Model, class Method, ShapeMask Shapes>
 void World<Device, T, Model, Method, Shapes>::advance(std::size_t steps) {
   finish();
   for (std::size_t k = 0; k < steps; ++k) {
-    if (settings_.reorder_every != 0 && steps_ != 0 && steps_ % settings_.reorder_every == 0) reorder_bodies();
+    if (reorder_due()) reorder_bodies();
     queue_step(nullptr);
   }
 }
@@ -421,8 +427,15 @@ void World<Device, T, Model, Method, Shapes>::advance_unattended(std::size_t ste
       queue_step(nullptr);
       --steps;
     }
-    unattended_.begin(steps_, stream_);
-    for (std::size_t k = 0; k < steps; ++k) queue_step(unattended_.hold());
+    const std::size_t every = settings_.reorder_every;
+    while (steps > 0) {
+      if (reorder_due()) reorder_bodies();  // waits for the steps queued before it
+      const std::size_t to_reorder = every != 0 ? every - steps_ % every : steps;
+      const std::size_t run = steps < to_reorder ? steps : to_reorder;
+      unattended_.begin(steps_, stream_);
+      for (std::size_t k = 0; k < run; ++k) queue_step(unattended_.hold());
+      steps -= run;
+    }
   }
 }
 

@@ -24,9 +24,10 @@ struct ExecutionSettings {
   // A persistent grid that fits in one thread-block cluster (sm_90 and later, at
   // most 16 blocks) runs as that cluster, with the cluster's hardware barrier.
   bool persistent_clusters = true;
-  // Every this many steps taken by advance() or step(), World puts its bodies in
-  // spatial order (World::reorder_bodies); 0: never. The BodySet's indices
-  // keep naming the same bodies. Off until a GPU measures what it buys.
+  // Every this many steps, World puts its bodies in spatial order
+  // (World::reorder_bodies; advance_unattended waits for the steps before
+  // each); 0: never. The BodySet's indices keep naming the same bodies. Off
+  // until a GPU measures what it buys.
   std::size_t reorder_every = 0;
 
   void validate() const {}  // every value is meaningful
