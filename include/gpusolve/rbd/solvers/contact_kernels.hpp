@@ -238,9 +238,10 @@ struct InverseBlocks {
   // part pairs may add more, and take their shares alike).
   GPUSOLVE_HD std::uint32_t pair_points(std::size_t i) const {
     const std::size_t n = c.size();
+    const std::uint32_t a = c.a[i], b = c.b[i];
     std::uint32_t k = 1;
-    for (std::size_t j = i; j > 0 && c.same_pair(j - 1, i); --j) ++k;
-    for (std::size_t j = i + 1; j < n && c.same_pair(j, i); ++j) ++k;
+    for (std::size_t j = i; j > 0 && c.a[j - 1] == a && c.b[j - 1] == b; --j) ++k;
+    for (std::size_t j = i + 1; j < n && c.a[j] == a && c.b[j] == b; ++j) ++k;
     return k;
   }
 };
