@@ -64,7 +64,7 @@ TEST_CASE("contact colouring: no colour holds two contacts of one moving body, a
   for (std::size_t p = 0; p < c.size(); ++p) REQUIRE(col.order()[p] == first[p]);
 }
 
-TEST_CASE("contact colouring colours body pairs: a box pair's points share one colour, and a sweep takes them in order",
+TEST_CASE("contact colouring colours body pairs: a box pair's points share one colour, and a sweep hands one thread the whole pair",
           "[rbd_methods][shapes]") {
   BodySet<double> set = gpusolve::bench::box_pyramid<double>(8);  // 36 boxes on a floor, four points per face
   BodyManager<device::cpu, double> m(set);
@@ -102,13 +102,16 @@ TEST_CASE("contact colouring colours body pairs: a box pair's points share one c
       for (std::uint32_t body : {c.a(i), c.b(i)})
         if (b.moving(body)) REQUIRE(bodies.insert(body).second);  // no moving body twice in one colour
     }
-    const auto record = [&](std::size_t i) { swept.push_back(std::uint32_t(i)); };
+    const auto record = [&](std::size_t first, std::size_t end) {
+      REQUIRE(end > first);
+      for (std::size_t p = first; p < end; ++p) {
+        REQUIRE(cv.same_pair(first, p));  // the whole pair, and nothing past it
+        swept.push_back(std::uint32_t(p));
+      }
+      REQUIRE((end == c.size() || !cv.same_pair(first, end)));
+    };
     const rbd::detail::InColour<decltype(record), decltype(cv)> in{record, cv, view, k};
-    for (std::size_t j = 0; j < view.widest; ++j) {
-      const std::size_t before = swept.size();
-      in(j);
-      for (std::size_t q = before + 1; q < swept.size(); ++q) REQUIRE(swept[q] == swept[q - 1] + 1);  // a pair's points in order
-    }
+    for (std::size_t j = 0; j < view.widest; ++j) in(j);
   }
   std::vector<std::uint32_t> sorted = swept;
   std::sort(sorted.begin(), sorted.end());

@@ -131,9 +131,8 @@ struct ColourView {
   std::size_t colours, widest;
 };
 
-// f(contact) for each point of the j-th pair of colour k, where colour k has
-// one, in the contacts' order: one thread takes a pair's points one after the
-// other, each seeing the velocities the one before it left.
+// f(first, end) for the points [first, end) of the j-th pair of colour k,
+// where colour k has one: one thread takes a pair's points.
 template <class F, class CV>
 struct InColour {
   F f;
@@ -145,7 +144,18 @@ struct InColour {
     if (first + j >= colours.bounds[k + 1]) return;
     const std::uint32_t i = colours.order[first + j], a = c.a[i], b = c.b[i];
     const std::size_t n = c.size();
-    for (std::size_t p = i; p < n && c.a[p] == a && c.b[p] == b; ++p) f(p);
+    std::size_t end = i + 1;
+    while (end < n && c.a[end] == a && c.b[end] == b) ++end;
+    f(std::size_t(i), end);
+  }
+};
+
+// A per-point f as a pair's: f(p) for each point, in order.
+template <class F>
+struct EachPointOfPair {
+  F f;
+  GPUSOLVE_HD void operator()(std::size_t first, std::size_t end) const {
+    for (std::size_t p = first; p < end; ++p) f(p);
   }
 };
 

@@ -12,6 +12,7 @@
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
 #include "gpusolve/rbd/solvers/contact_solver_base.hpp"
 #include "gpusolve/rbd/solvers/convergence.hpp"
+#include "gpusolve/rbd/solvers/iterate.hpp"
 #include "gpusolve/rbd/solvers/program_solve.hpp"
 #include "gpusolve/rbd/solvers/relaxation.hpp"
 #include "gpusolve/rbd/solvers/solver.hpp"
@@ -22,16 +23,43 @@ namespace gpusolve::rbd {
 
 namespace detail {
 
-// One contact's next velocity error and its projected update, applied to its
-// bodies at once (no other pair of its colour touches them).
+// The velocities a pair's two bodies had when the sweep reached the pair: each
+// of the pair's points reads its error from them (PairJacobi).
+template <class T>
+struct PairVelocities : CurrentIterate<T> {
+  std::uint32_t a;
+  math::Vector3<T> va, wa, vb, wb;
+  template <class BV>
+  GPUSOLVE_HD PairVelocities(const BV& b, std::uint32_t a_, std::uint32_t b_) : a(a_) {
+    CurrentIterate<T>::velocity(b, a_, va, wa);
+    CurrentIterate<T>::velocity(b, b_, vb, wb);
+  }
+  template <class BV>
+  GPUSOLVE_HD void velocity(const BV&, std::uint32_t k, math::Vector3<T>& v, math::Vector3<T>& w) const {
+    v = k == a ? va : vb;
+    w = k == a ? wa : wb;
+  }
+};
+
+// One body pair's points [first, end): each point's velocity error from the
+// velocities the pair had when the sweep reached it, and its projected update
+// with its 1/k share of a step (InverseBlocks), applied to the bodies at once
+// (no other pair of its colour touches them). Gauss-Seidel from pair to pair,
+// Jacobi within one: swept one after another, each of a face's points answered
+// the turn its predecessor's impulse gave the box, and the fixed order left a
+// sideways push that a finite solve did not cancel (the 20-box stack crept
+// 0.56% of a half extent in 10 s and fell at 100 to 400 iterations; docs/methods.md).
 template <class Model, class BV, class CV, class T>
 struct GaussSeidelContact {
   CalcNextPhi<Model, BV, CV, T> phi;
   ResolveCollisions<Model, BV, CV, DirectSink<BV, T>, T> resolve;
-  GPUSOLVE_HD void operator()(std::size_t i) const {
-    T e[Model::rows];
-    phi.error(i, e);
-    resolve.update(i, e);
+  GPUSOLVE_HD void operator()(std::size_t first, std::size_t end) const {
+    const PairVelocities<T> reached(phi.b, phi.c.a[first], phi.c.b[first]);
+    for (std::size_t i = first; i < end; ++i) {
+      T e[Model::rows];
+      phi.error(i, e, reached);
+      resolve.update(i, e);
+    }
   }
 };
 
@@ -54,7 +82,7 @@ struct GaussSeidelStart {
     if (saving && first) e.each(save.b.size(), save);  // nothing in this phase writes a velocity
     e.each(blocks.c.size(), blocks);
     e.sync();
-    if (from_x && first) sweep_colours(e, blocks.c, colours, apply);
+    if (from_x && first) sweep_colours(e, blocks.c, colours, EachPointOfPair<Apply>{apply});
   }
 };
 
@@ -115,11 +143,12 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
     run_.prepare(this->residual_terms(b, c), width, s, stream);
     const T omega = omega_of<ColouredGaussSeidelSolver>(s);
     const detail::DirectSink<BV, T> sink{b};
-    // Each attempt's start: whole steps (a sweep sees the others' changes).
+    // Each attempt's start: a pair's k points take 1/k of a step each, as in
+    // Jacobi (GaussSeidelContact updates them together).
     auto start = [&](bool first_attempt) {
       return detail::GaussSeidelStart<detail::CopyVelocities<BV, T>, InverseBlocks<Model, BV, CV, T>,
                                       ApplyImpulses<Model, BV, CV, detail::DirectSink<BV, T>, T>>{
-          this->start_.saver(b), {b, c, run_.scale(), false}, {b, c, sink}, colours,
+          this->start_.saver(b), {b, c, run_.scale()}, {b, c, sink}, colours,
           first_attempt && s.max_retries > 0, from_x && first_attempt};
     };
     const VectorD2View<T> rhs{};  // GaussSeidelContact keeps each error in registers: no store

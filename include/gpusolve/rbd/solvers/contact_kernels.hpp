@@ -199,9 +199,10 @@ struct DirectSink {
 // under a simultaneous (Jacobi-type) update each takes 1/k of the step: all k
 // at once would apply the pair's correction k times over, which a Jacobi
 // iteration does not survive (the shared cube pile diverged within 500 steps).
-// A sweep that updates one point at a time (Gauss-Seidel) sees the others'
-// changes and takes whole steps (`shared` false). A pair with one point, as
-// every sphere pair, is unchanged.
+// Coloured Gauss-Seidel updates a pair's points together too; the sequential
+// reference (pgs.hpp) updates one point at a time, sees the others' changes
+// and takes whole steps (`shared` false). A pair with one point, as every
+// sphere pair, is unchanged.
 template <class Model, class BV, class CV, class T>
 struct InverseBlocks {
   BV b;
