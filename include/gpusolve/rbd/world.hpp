@@ -151,7 +151,7 @@ class World {
   // and every reduction of the solver go through `exchange` (nullptr: none).
   // Throws UnsupportedError naming the method where it does not run
   // distributed (solves_distributed: the Jacobi family with Gather or UpdateCache,
-  // and substepping over it).
+  // substepping over it, AcceleratedCG and coloured Gauss-Seidel).
   void set_exchange(BodyExchange<T>* exchange);
   bool distributed() const { return distributed_; }
   // The contacts the last step remembered for the next one's warm start, on
@@ -497,7 +497,7 @@ void World<Device, T, Model, Method, Shapes>::set_exchange(BodyExchange<T>* exch
   } else if (exchange != nullptr)
     throw UnsupportedError(std::string("gpusolve: World::set_exchange: the method '") + Method::name +
                            "' does not run distributed (jacobi and apgd with the Gather or UpdateCache sums do, "
-                           "substepping over them, and apgd-cg)");
+                           "substepping over them, apgd-cg and gauss-seidel)");
 }
 
 template <class Device, class T, class Model, class Method, ShapeMask Shapes>

@@ -9,6 +9,8 @@
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/contacts/contact_colouring.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
+#include "gpusolve/rbd/execution/body_exchange.hpp"
+#include "gpusolve/rbd/execution/launch_exec.hpp"
 #include "gpusolve/rbd/solvers/contact_kernels.hpp"
 #include "gpusolve/rbd/solvers/contact_solver_base.hpp"
 #include "gpusolve/rbd/solvers/convergence.hpp"
@@ -63,16 +65,69 @@ struct GaussSeidelContact {
   }
 };
 
+// A distributed sweep's velocity changes (BodyExchange): body k's change
+// since `before` saved the velocities into row k of `out` (dv, then dw) ...
+template <class BV, class T>
+struct StoreSweepChanges {
+  CopyVelocities<BV, T> before;
+  VectorD2View<T> out;  // bodies x 6
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    for (std::size_t c = 0; c < 3; ++c)
+      out(k, c) = before.b.v(k, c) - before.v(k, c), out(k, 3 + c) = before.b.w(k, c) - before.w(k, c);
+  }
+};
+
+// ... and, once combined over the ranks, added to the saved velocities.
+template <class BV, class T>
+struct AddSweepChanges {
+  CopyVelocities<BV, T> before;
+  VectorD2View<T> in;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    for (std::size_t c = 0; c < 3; ++c)
+      before.b.v(k, c) = before.v(k, c) + in(k, c), before.b.w(k, c) = before.w(k, c) + in(k, 3 + c);
+  }
+};
+
+// A sweep over the colours; in a distributed solve, each rank sweeps its own
+// contacts from the velocities the ranks agree on, and every body gets the
+// sum of its changes on all ranks that hold it: Gauss-Seidel within a rank,
+// Jacobi between ranks, as HCSITS's subdomain sweeps (Preclik and Ruede
+// 2015). `before` saves the velocities where the sweep starts.
+template <class BV, class T>
+struct RankSweep {
+  CopyVelocities<BV, T> before;  // restore false: saves
+  GPUSOLVE_EXEC_CHECK_DISABLE
+  template <class E, class CV, class F>
+  GPUSOLVE_HD void operator()(const E& e, const CV& c, const ColourView& colours, const F& f) const {
+    if constexpr (may_exchange<E>::value)
+      if (e.exchange != nullptr) return shared(e, c, colours, f);
+    sweep_colours(e, c, colours, f);
+  }
+  template <class E, class CV, class F>
+  void shared(const E& e, const CV& c, const ColourView& colours, const F& f) const {
+    const std::size_t n = before.b.size();
+    e.each(n, before);
+    e.sync();
+    sweep_colours(e, c, colours, f);
+    const VectorD2View<T> sums = e.exchange->sums(n);
+    e.each(n, StoreSweepChanges<BV, T>{before, sums});
+    e.sync();
+    e.combine(n);
+    e.each(n, AddSweepChanges<BV, T>{before, sums});
+  }
+};
+
 // The start program of an attempt (persistent_loop.hpp): the velocities' copy
 // for a retry (`saving`), each contact's inverse block, then the velocity
 // change of the impulses it starts from, colour by colour (`from_x`: warm
 // start). A retry inside the persistent kernel (`retry`) starts cold.
-template <class Save, class Blocks, class Apply>
+template <class Save, class Blocks, class Apply, class Sweep>
 struct GaussSeidelStart {
   Save save;
   Blocks blocks;
   Apply apply;
   ColourView colours;
+  Sweep sweep;
   bool saving, from_x;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
@@ -82,23 +137,24 @@ struct GaussSeidelStart {
     if (saving && first) e.each(save.b.size(), save);  // nothing in this phase writes a velocity
     e.each(blocks.c.size(), blocks);
     e.sync();
-    if (from_x && first) sweep_colours(e, blocks.c, colours, EachPointOfPair<Apply>{apply});
+    if (from_x && first) sweep(e, blocks.c, colours, EachPointOfPair<Apply>{apply});
   }
 };
 
 // One iteration as a program: a sweep over the colours (`measuring` in the
 // last iteration of a run, which records each contact's residual), then in
 // the last the residual check's reduction into *residual_out.
-template <class Contact, class Residual, class T>
+template <class Contact, class Sweep, class Residual, class T>
 struct GaussSeidelIteration {
   Contact plain, measuring;
   ColourView colours;
+  Sweep sweep;
   Residual residual;  // over its width(): max(contacts, bodies)
   T* residual_out;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e, std::size_t, bool last) const {
-    sweep_colours(e, plain.phi.c, colours, last ? measuring : plain);
+    sweep(e, plain.phi.c, colours, last ? measuring : plain);
     if (last) reduce_residual(e, residual, residual_out);
   }
 };
@@ -135,7 +191,7 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
     SolverStats<T> stats;
     const BV b = bodies.view();
     const CV c = contacts.view();
-    if (!this->prepare(c, s, stats)) return stats;
+    if (!this->prepare(c, s, stats) && run_.exchange() == nullptr) return stats;
     colouring_.build(b, c, stream);
     stats.colours = colouring_.colours();
     const detail::ColourView colours = colouring_.view();
@@ -143,12 +199,15 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
     run_.prepare(this->residual_terms(b, c), width, s, stream);
     const T omega = omega_of<ColouredGaussSeidelSolver>(s);
     const detail::DirectSink<BV, T> sink{b};
+    if (run_.exchange() != nullptr) sweep_start_.reserve(b);
+    const detail::RankSweep<BV, T> sweep{sweep_start_.saver(b)};
     // Each attempt's start: a pair's k points take 1/k of a step each, as in
     // Jacobi (GaussSeidelContact updates them together).
     auto start = [&](bool first_attempt) {
       return detail::GaussSeidelStart<detail::CopyVelocities<BV, T>, InverseBlocks<Model, BV, CV, T>,
-                                      ApplyImpulses<Model, BV, CV, detail::DirectSink<BV, T>, T>>{
-          this->start_.saver(b), {b, c, run_.scale()}, {b, c, sink}, colours,
+                                      ApplyImpulses<Model, BV, CV, detail::DirectSink<BV, T>, T>,
+                                      detail::RankSweep<BV, T>>{
+          this->start_.saver(b), {b, c, run_.scale()}, {b, c, sink}, colours, sweep,
           first_attempt && s.max_retries > 0, from_x && first_attempt};
     };
     const VectorD2View<T> rhs{};  // GaussSeidelContact keeps each error in registers: no store
@@ -157,8 +216,8 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
     Contact measuring = plain;
     measuring.resolve.measure = true;
     const auto terms = this->residual_terms(b, c);
-    const detail::GaussSeidelIteration<Contact, decltype(terms), T> iteration{plain, measuring, colours, terms,
-                                                                              run_.residual_out()};
+    const detail::GaussSeidelIteration<Contact, detail::RankSweep<BV, T>, decltype(terms), T> iteration{
+        plain, measuring, colours, sweep, terms, run_.residual_out()};
     if (!from_x) contacts.x.fill(T(0), stream);
     if (run_.persistent(contacts.expected_size(), s)) {
       if (s.max_retries > 0) this->start_.reserve(b);
@@ -172,8 +231,15 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
 
   const ContactColouring<Device>& colouring() const { return colouring_; }
 
+  // A distributed solve (rbd/distributed/): each rank sweeps its own contacts,
+  // the bodies' changes of a sweep and every reduction are shared over the
+  // ranks through `exchange` (nullptr: none), as launches (detail::RankSweep).
+  // A rank without contacts still takes part in every exchange.
+  void set_exchange(BodyExchange<T>* exchange) { run_.set_exchange(exchange); }
+
  private:
   ContactColouring<Device> colouring_;
+  VelocitySnapshot<Device, T> sweep_start_;  // a distributed sweep's start (detail::RankSweep)
   detail::ProgramSolve<Device, T> run_;  // the persistent kernel or launches; checks and retries
 };
 

@@ -104,7 +104,7 @@ struct solves_unattended<S, std::void_t<decltype(std::declval<S&>().hold_while(s
     : std::true_type {};
 
 // Whether solver S runs distributed: set_exchange(BodyExchange<T>*) shares its
-// bodies' sums and reductions over ranks (the Jacobi family, summing per body).
+// bodies' sums and reductions over ranks (every method but the Atomic sums).
 template <class S, class T, class = void>
 struct solves_distributed : std::false_type {};
 template <class S, class T>
