@@ -162,9 +162,10 @@ struct GaussSeidelIteration {
 }  // namespace detail
 
 // Projected (block) Gauss-Seidel over contacts, parallel within a colour: the
-// contacts are coloured on the device every step (ContactColouring) so that no
-// two of one colour share a moving body, and one iteration sweeps the colours in
-// order, each contact seeing the velocities its predecessors in the sweep left.
+// body pairs in contact are coloured on the device every step (ContactColouring)
+// so that no two of one colour share a moving body, and one iteration sweeps the
+// colours in order, each pair seeing the velocities its predecessors in the
+// sweep left (a pair's own points step together: GaussSeidelContact).
 // The GPU form of the sequential reference (pgs.hpp), as in PhysX's and Bullet's
 // GPU PGS solvers (graph colouring: Tonge, Benevolenski and Voroshilov 2012 use
 // it for their mass-splitting Jacobi; Harada 2011, "A parallel constraint solver
