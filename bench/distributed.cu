@@ -1,7 +1,8 @@
 // The shared sphere pile (docs/piles.md) as one DistributedWorld over however
 // many ranks mpirun starts, on the CPU backend or with every rank's World on
 // the one GPU (ranks sharing it):
-//   mpirun -np R gpusolve_bench_distributed [--backend cpu|gpu] [--n 100000] [--steps 300] [--csv FILE]
+//   mpirun -np R gpusolve_bench_distributed [--backend cpu|gpu] [--method apgd|gauss-seidel] [--n 100000]
+//     [--steps 300] [--csv FILE]
 // Measured over the last third of the steps, medians, each phase the slowest
 // rank's: the whole step (host clock, every rank waits for the slowest at the
 // step's end); `bodies`, bodies moved between ranks, the Worlds rebuilt (or
@@ -43,9 +44,9 @@ struct Result {
   rbd::DistributedStats<T> last;
 };
 
-template <class Device>
+template <class Device, class Method>
 Result run(const rbd::BodySet<T>& scene, long steps) {
-  rbd::DistributedWorld<Device, T> world(MPI_COMM_WORLD, scene, rbd::SolverSettings<T>{});
+  rbd::DistributedWorld<Device, T, rbd::ConeFriction, Method> world(MPI_COMM_WORLD, scene, rbd::SolverSettings<T>{});
   world.set_phase_timing(true);
   std::vector<double> measured[phases];
   Result r;
@@ -78,10 +79,11 @@ int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
   std::size_t n = 100000;
   long steps = 300;
-  std::string csv, backend = "cpu";
+  std::string csv, backend = "cpu", method = "apgd";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--backend") backend = argv[i + 1];
+    else if (a == "--method") method = argv[i + 1];
     else if (a == "--n") n = std::stoul(argv[i + 1]);
     else if (a == "--steps") steps = std::stol(argv[i + 1]);
     else if (a == "--csv") csv = argv[i + 1];
@@ -91,13 +93,22 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   rbd::BodySet<T> scene = bench::shared_pile<T>(n);
   if (rank != 0) scene.records().clear();  // rank 0 adds the scene; the world spreads it
-  const Result r = backend == "gpu" ? run<device::gpu>(scene, steps) : run<device::cpu>(scene, steps);
+  if (method != "apgd" && method != "gauss-seidel") {
+    if (rank == 0) std::fprintf(stderr, "gpusolve_bench_distributed: --method is apgd or gauss-seidel, not '%s'\n", method.c_str());
+    MPI_Finalize();
+    return 2;
+  }
+  using APGD = rbd::AcceleratedJacobi<rbd::Gather>;
+  using GS = rbd::ColouredGaussSeidel;
+  const bool gs = method == "gauss-seidel";
+  const Result r = backend == "gpu" ? (gs ? run<device::gpu, GS>(scene, steps) : run<device::gpu, APGD>(scene, steps))
+                                    : (gs ? run<device::cpu, GS>(scene, steps) : run<device::cpu, APGD>(scene, steps));
   if (rank == 0) {
     const int threads = std::getenv("OMP_NUM_THREADS") ? std::atoi(std::getenv("OMP_NUM_THREADS")) : 0;
-    std::printf("%s, ranks %d (OMP_NUM_THREADS %d), %zu spheres, %ld steps: %.2f ms/step (bodies %.2f, detection "
+    std::printf("%s, %s, ranks %d (OMP_NUM_THREADS %d), %zu spheres, %ld steps: %.2f ms/step (bodies %.2f, detection "
                 "%.2f, solve %.2f, exchange %.2f, integration %.2f), contacts %zu, shadows %zu, penetration %.4f%%, "
                 "rebuilt before %ld of the %ld measured steps\n",
-                backend.c_str(), ranks, threads, n, steps, r.ms[0], r.ms[1], r.ms[2], r.ms[3], r.ms[4], r.ms[5],
+                backend.c_str(), method.c_str(), ranks, threads, n, steps, r.ms[0], r.ms[1], r.ms[2], r.ms[3], r.ms[4], r.ms[5],
                 r.last.contacts, r.last.shadows, 100 * r.penetration, r.rebuilds, steps / 3);
     if (!csv.empty()) {
       FILE* f = std::fopen(csv.c_str(), "a");
@@ -106,11 +117,12 @@ int main(int argc, char** argv) {
         if (std::ftell(f) == 0) {
           std::fprintf(f, "backend,ranks,threads_per_rank,n,steps");
           for (const char* p : phase_names) std::fprintf(f, ",ms_%s", p);
-          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds\n");
+          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds,method\n");
         }
         std::fprintf(f, "%s,%d,%d,%zu,%ld", backend.c_str(), ranks, threads, n, steps);
         for (double x : r.ms) std::fprintf(f, ",%.4f", x);
-        std::fprintf(f, ",%zu,%zu,%.6g,%ld\n", r.last.contacts, r.last.shadows, r.penetration, r.rebuilds);
+        std::fprintf(f, ",%zu,%zu,%.6g,%ld,%s\n", r.last.contacts, r.last.shadows, r.penetration, r.rebuilds,
+                     method.c_str());
         std::fclose(f);
       }
     }
