@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
 """Chart of bench/distributed.cu's CSV: time per step against ranks beside the
 ideal (one rank's time over the ranks), the exchange's part shaded; the
-speed-up over one rank above each bar.
-Usage: tools/plot_distributed.py CSV -o PNG [--backend cpu|gpu] [--title TEXT]"""
+speed-up over one rank above each bar. With --efficiency instead: the parallel
+efficiency against ranks, a line per mode and scaling (strong: the same pile at
+every count, one rank's time over ranks x the time; weak: the same spheres per
+rank, one rank's time over the time: the bench's --per-rank runs).
+Usage: tools/plot_distributed.py CSV -o PNG [--backend cpu|gpu] [--title TEXT] [--efficiency]"""
 import argparse
 import csv
 
@@ -18,8 +21,11 @@ def main():
     ap.add_argument("-o", "--output", required=True)
     ap.add_argument("--title", default="")
     ap.add_argument("--backend", default=None)
+    ap.add_argument("--efficiency", action="store_true")
     a = ap.parse_args()
     rows = [r for r in csv.DictReader(open(a.csv)) if a.backend is None or r.get("backend") == a.backend]
+    if a.efficiency:
+        return plot_efficiency(rows, a)
     rows = sorted(rows, key=lambda r: int(r["ranks"]))
     ranks = [int(r["ranks"]) for r in rows]
     # Both of the bench's formats: ms_per_step and ms_exchange (bodies and the
@@ -35,6 +41,30 @@ def main():
         ax.annotate(f"{one / total[i]:.2f}x", (i, total[i]), ha="center", va="bottom", fontsize=9)
     ax.set_xlabel("MPI ranks (one core each)")
     ax.set_ylabel("ms per step (median)")
+    ax.set_title(a.title, fontsize=9)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=120)
+
+
+def plot_efficiency(rows, a):
+    lines = {}  # (mode, scaling, spheres) -> {ranks: ms}
+    for r in rows:
+        ranks, per_rank = int(r["ranks"]), int(r.get("per_rank") or 0)
+        key = (r.get("mode") or "defaults", "weak" if per_rank else "strong", per_rank or int(r["n"]))
+        lines.setdefault(key, {})[ranks] = float(r["ms_step"])
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for (mode, scaling, n), times in sorted(lines.items()):
+        if 1 not in times or len(times) < 2:
+            continue
+        ranks = sorted(times)
+        eff = [times[1] / (times[r] * (r if scaling == "strong" else 1)) for r in ranks]
+        per = "per rank" if scaling == "weak" else "in all"
+        ax.plot(ranks, eff, marker="o", label=f"{mode}, {scaling}: {n} spheres {per}")
+    ax.axhline(1.0, color="k", lw=0.8, ls="--")
+    ax.set_xlabel("MPI ranks")
+    ax.set_ylabel("parallel efficiency")
+    ax.set_ylim(0, 1.2)
     ax.set_title(a.title, fontsize=9)
     ax.legend(fontsize=8)
     fig.tight_layout()

@@ -1,9 +1,9 @@
 // DistributedWorld over MPI, on the CPU backend (run by ctest with mpirun at
 // 1, 2 and 4 ranks) and, compiled again by test_distributed_world_gpu.cu with
-// GPUSOLVE_TEST_GPU, on the GPU (ranks sharing it): piles of spheres, boxes,
+// GPUSOLVE_TEST_GPU, on the GPUs (the node's, taken in turn): piles of spheres, boxes,
 // capsules and unions match one World over the whole scene; bodies that cross
 // between ranks are neither lost nor doubled; a NaN in one rank's body and a
-// rank that throws are reported by every rank.
+// rank that throws are reported by every rank; a node's ranks take its GPUs in turn.
 #define CATCH_CONFIG_RUNNER
 #include <mpi.h>
 
@@ -309,6 +309,15 @@ TEST_CASE("distributed: a rank that throws does not hang the others", "[distribu
   }
 }
 
+TEST_CASE("distributed: the ranks of a node take its GPUs in turn", "[distributed]") {
+  const NodePlace p = node_place(MPI_COMM_WORLD);  // mpirun on one machine: one node
+  CHECK(p.local_rank == rank_of_world());
+  CHECK(p.local_ranks == ranks_of_world());
+  CHECK(rank_gpu(p, 1) == 0);  // one GPU: shared by all
+  CHECK(rank_gpu(p, 8) == rank_of_world() % 8);
+  CHECK(rank_gpu({9, 16}, 8) == 1);  // more ranks than GPUs: round the GPUs again
+}
+
 TEST_CASE("distributed: a method that does not run distributed is refused on every rank", "[distributed]") {
   CHECK_THROWS_AS((DistributedWorld<TestDevice, double, ConeFriction, Jacobi<Atomic>>(MPI_COMM_WORLD,
                                                                             on_rank_zero(sphere_pile()),
@@ -325,9 +334,10 @@ int main(int argc, char* argv[]) {
     MPI_Finalize();
     return 77;
   }
+  const int device = use_rank_gpu(MPI_COMM_WORLD);
   cudaDeviceProp prop{};
-  if (rank_of_world() == 0 && cudaGetDeviceProperties(&prop, 0) == cudaSuccess)
-    std::printf("gpusolve distributed tests on %s, %d ranks sharing it\n", prop.name, ranks_of_world());
+  if (rank_of_world() == 0 && cudaGetDeviceProperties(&prop, device) == cudaSuccess)
+    std::printf("gpusolve distributed tests on %s, %d ranks over %d GPU(s)\n", prop.name, ranks_of_world(), gpus);
 #endif
   // Only rank 0 reports; every rank runs every test (they are collective).
   if (rank_of_world() != 0) std::freopen("/dev/null", "w", stdout);

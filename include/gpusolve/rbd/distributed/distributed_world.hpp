@@ -21,6 +21,7 @@
 #include "gpusolve/rbd/bodies/validation.hpp"
 #include "gpusolve/rbd/distributed/mpi_body_exchange.hpp"
 #include "gpusolve/rbd/distributed/rank_agreement.hpp"
+#include "gpusolve/rbd/distributed/rank_device.hpp"
 #include "gpusolve/rbd/distributed/rank_grid.hpp"
 #include "gpusolve/rbd/distributed/rank_messages.hpp"
 #include "gpusolve/rbd/solvers/friction_anchors.hpp"
