@@ -119,6 +119,15 @@ TEST_CASE("distributed hooks: an exchange that adds nothing gives the solve with
   CHECK(gs.combines >= it_gs);  // one per sweep, and one for each warm start
   CHECK(gs.combines <= it_gs + 40);
   CHECK(gs.reductions > 0);
+  // A rank without contacts still takes part in every exchange of a solve.
+  BodySet<double> alone;
+  alone.add_sphere({0, 0, 5}, 0.5, 1.0);
+  World<device::cpu, double, ConeFriction, ColouredGaussSeidel> idle(alone, SolverSettings<double>{});
+  CountingExchange<double> idle_ex;
+  idle.set_exchange(&idle_ex);
+  REQUIRE(idle.step().solver.contacts == 0);
+  CHECK(idle_ex.combines == SolverSettings<double>{}.max_iterations + 1);  // a sweep each, and the warm start's
+  CHECK(idle_ex.reductions > 0);
 }
 
 TEST_CASE("distributed hooks: a method that does not run distributed says so", "[rbd_distributed]") {

@@ -26,7 +26,7 @@ namespace gpusolve::rbd {
 namespace detail {
 
 // The velocities a pair's two bodies had when the sweep reached the pair: each
-// of the pair's points reads its error from them (PairJacobi).
+// of the pair's points reads its error from them (GaussSeidelContact).
 template <class T>
 struct PairVelocities : CurrentIterate<T> {
   std::uint32_t a;
