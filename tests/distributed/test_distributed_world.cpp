@@ -202,7 +202,8 @@ TEST_CASE("distributed: AcceleratedCG steps as one World does (its sums, minimum
 // over the ranks: not one World's sweep, so not its numbers to the bit (at one
 // rank it is one World). Without the sums a rank's own bodies miss what the
 // others did to them: the pyramid then sank 21 times as deep (9.7e-4 m) and
-// moved 7e-4 m, the falling spheres went 1.3e-2 m astray at 0.44 m/s.
+// moved 7e-4 m, the falling spheres went 1.3e-2 m astray at 0.44 m/s (with
+// one pass per pair, before GaussSeidelContact took two).
 TEST_CASE("distributed: coloured Gauss-Seidel stands a pyramid of boxes and drops a pile of spheres as one World does",
           "[distributed]") {
   const bool one = ranks_of_world() == 1;

@@ -30,6 +30,14 @@
 #define GPUSOLVE_UNROLL
 #endif
 
+// Put before a loop whose body should stay one copy in a kernel that holds
+// many (nvcc would otherwise unroll a short loop and give every copy registers).
+#if defined(__CUDACC__)
+#define GPUSOLVE_NO_UNROLL _Pragma("unroll 1")
+#else
+#define GPUSOLVE_NO_UNROLL
+#endif
+
 // The CUDA runtime API (memory, streams, events) is usable from plain C++ when
 // its header is on the include path; kernels need nvcc (GPUSOLVE_HAS_NVCC).
 // Define GPUSOLVE_NO_CUDART to build a strictly CPU-only program.

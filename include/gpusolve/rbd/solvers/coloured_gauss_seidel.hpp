@@ -6,6 +6,7 @@
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/container/vector_d2.hpp"
+#include "gpusolve/core/config.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/contacts/contact_colouring.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
@@ -25,8 +26,8 @@ namespace gpusolve::rbd {
 
 namespace detail {
 
-// The velocities a pair's two bodies had when the sweep reached the pair: each
-// of the pair's points reads its error from them (GaussSeidelContact).
+// The velocities a pair's two bodies had when a pass of the sweep reached the
+// pair: each of the pair's points reads its error from them (GaussSeidelContact).
 template <class T>
 struct PairVelocities : CurrentIterate<T> {
   std::uint32_t a;
@@ -43,24 +44,31 @@ struct PairVelocities : CurrentIterate<T> {
   }
 };
 
-// One body pair's points [first, end): each point's velocity error from the
-// velocities the pair had when the sweep reached it, and its projected update
-// with its 1/k share of a step (InverseBlocks), applied to the bodies at once
-// (no other pair of its colour touches them). Gauss-Seidel from pair to pair,
-// Jacobi within one: swept one after another, each of a face's points answered
-// the turn its predecessor's impulse gave the box, and the fixed order left a
-// sideways push that a finite solve did not cancel (the 20-box stack crept
-// 0.56% of a half extent in 10 s and fell at 100 to 400 iterations; docs/methods.md).
+// One body pair's points [first, end) in two passes: in each, every point's
+// velocity error from the velocities the pair had when the pass began, and its
+// projected update with its 1/k share of a step (InverseBlocks), applied to the
+// bodies at once (no other pair of its colour touches them). Gauss-Seidel from
+// pair to pair, Jacobi within one: swept one after another, each of a face's
+// points answered the turn its predecessor's impulse gave the box, and the
+// fixed order left a sideways push that a finite solve did not cancel (the
+// 20-box stack crept 0.56% of a half extent in 10 s and fell at 100 to 400
+// iterations); one pass at 1/k converged too slowly for a tower of thin slabs
+// (it sank 1.3% in 10 s), two hold it (docs/methods.md). A pair of one point
+// takes one. The first pass records the residual: the change the sweep found.
 template <class Model, class BV, class CV, class T>
 struct GaussSeidelContact {
   CalcNextPhi<Model, BV, CV, T> phi;
   ResolveCollisions<Model, BV, CV, DirectSink<BV, T>, T> resolve;
   GPUSOLVE_HD void operator()(std::size_t first, std::size_t end) const {
-    const PairVelocities<T> reached(phi.b, phi.c.a[first], phi.c.b[first]);
-    for (std::size_t i = first; i < end; ++i) {
-      T e[Model::rows];
-      phi.error(i, e, reached);
-      resolve.update(i, e);
+    const std::size_t passes = end - first > 1 ? 2 : 1;  // one point (every sphere pair): one update
+    GPUSOLVE_NO_UNROLL
+    for (std::size_t p = 0; p < passes; ++p) {
+      const PairVelocities<T> reached(phi.b, phi.c.a[first], phi.c.b[first]);
+      for (std::size_t i = first; i < end; ++i) {
+        T e[Model::rows];
+        phi.error(i, e, reached);
+        resolve.update(i, e, CurrentIterate<T>{}, LoadBodies{}, p == 0);
+      }
     }
   }
 };

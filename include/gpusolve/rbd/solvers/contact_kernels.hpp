@@ -328,8 +328,9 @@ struct ResolveCollisions {
   // compiler may not move a load past a store (the views might alias), so
   // storing first would make the response's loads wait for it.
   template <class Iterate = detail::CurrentIterate<T>, class Bodies = detail::LoadBodies>
+  // `record` false: not this update's residual, even where measuring.
   GPUSOLVE_HD void update(std::size_t i, const T (&e)[Model::rows], const Iterate& it = Iterate{},
-                          const Bodies& bodies = Bodies{}) const {
+                          const Bodies& bodies = Bodies{}, bool record = true) const {
     constexpr std::size_t R = Model::rows;
     const detail::Frame<T, Model, CV> f(c, i);
     T x0[R], y[R], x[R], dx[R];
@@ -340,7 +341,7 @@ struct ResolveCollisions {
     const detail::BodyResponse<T> d = detail::response_of<T>(bodies, b, c, i, f, dx);
     d.send(sink, i);
     it.store(c, i, e, x0, x);
-    if (measure) {
+    if (measure && record) {
       T du[R];
       d.rows(f, du);
       T m = 0;
