@@ -3,7 +3,6 @@
 // as one that is not, to float rounding; a box heap's state survives a reorder.
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <vector>
 
 #include "catch_compat.hpp"
@@ -11,29 +10,9 @@
 
 using namespace rbd_test;
 
-namespace {
-
-BodySet<float> shuffled_pile() {
-  BodySet<float> set = pile<float>(6, 4);
-  std::mt19937 gen(5);
-  std::shuffle(set.records().begin(), set.records().end(), gen);
-  return set;
-}
-
-template <class W>
-std::vector<float> positions(W& w, BodySet<float>& set) {
-  w.syncHost();
-  std::vector<float> x;
-  for (const auto& b : set.records())
-    for (int c = 0; c < 3; ++c) x.push_back(b.pos[c]);
-  return x;
-}
-
-}  // namespace
-
 TEST_CASE("GPU reorder_bodies: the slots of the CPU backend, and the steps of a World without it",
           "[rbd_reorder][gpu]") {
-  BodySet<float> gpu_set = shuffled_pile(), cpu_set = gpu_set, plain_set = gpu_set;
+  BodySet<float> gpu_set = shuffled(pile<float>(6, 4), 5), cpu_set = gpu_set, plain_set = gpu_set;
   World<device::gpu, float> gpu(gpu_set, SolverSettings<float>{});
   World<device::cpu, float> cpu(cpu_set, SolverSettings<float>{});
   gpu.reorder_bodies(), cpu.reorder_bodies();
@@ -52,9 +31,7 @@ TEST_CASE("GPU reorder_bodies: the slots of the CPU backend, and the steps of a 
 }
 
 TEST_CASE("GPU reorder_bodies: a heap of every shape keeps its state and indices", "[rbd_reorder][gpu][shapes]") {
-  BodySet<float> set = mixed_heap<float>(4, 3);
-  std::mt19937 gen(9);
-  std::shuffle(set.records().begin(), set.records().end(), gen);
+  BodySet<float> set = shuffled(mixed_heap<float>(4, 3), 9);
   World<device::gpu, float> w(set, SolverSettings<float>{});
   w.advance(50);
   const auto before = positions(w, set);

@@ -42,15 +42,6 @@ BodySet<double> small_pile() {
   return set;
 }
 
-template <class W>
-std::vector<double> positions(W& w, BodySet<double>& set) {
-  w.syncHost();
-  std::vector<double> x;
-  for (const auto& b : set.records())
-    for (int c = 0; c < 3; ++c) x.push_back(b.pos[c]);
-  return x;
-}
-
 }  // namespace
 
 TEST_CASE("distributed hooks: a shadow moves but meets only active bodies", "[rbd_distributed]") {

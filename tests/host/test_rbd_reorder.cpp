@@ -18,15 +18,6 @@ using namespace rbd_test;
 
 namespace {
 
-// The records of `set` in a random order (seed fixed): a heap whose bodies sit
-// anywhere in memory, as in a pile that has mixed.
-template <class T>
-BodySet<T> shuffled(BodySet<T> set, unsigned seed = 11) {
-  std::mt19937 gen(seed);
-  std::shuffle(set.records().begin(), set.records().end(), gen);
-  return set;
-}
-
 template <class W>
 std::vector<double> state(W& w, BodySet<double>& set) {
   w.syncHost();

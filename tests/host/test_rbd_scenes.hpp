@@ -1,6 +1,7 @@
 // Small scenes and helpers shared by the rbd solver and physics tests (host and GPU).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <array>
 #include <cstddef>
@@ -160,6 +161,25 @@ T max_abs_diff(const std::vector<T>& a, const std::vector<T>& b) {
   T m = 0;
   for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) m = std::fmax(m, std::fabs(a[i] - b[i]));
   return a.size() == b.size() ? m : T(INFINITY);
+}
+
+// The records of `set` in a random order (seed fixed): a heap whose bodies sit
+// anywhere in memory, as in a pile that has mixed.
+template <class T>
+BodySet<T> shuffled(BodySet<T> set, unsigned seed = 11) {
+  std::mt19937 gen(seed);
+  std::shuffle(set.records().begin(), set.records().end(), gen);
+  return set;
+}
+
+// World w's positions after a syncHost, body by body (x, y, z) in `set`'s order.
+template <class W, class T>
+std::vector<T> positions(W& w, BodySet<T>& set) {
+  w.syncHost();
+  std::vector<T> x;
+  for (const auto& b : set.records())
+    for (int c = 0; c < 3; ++c) x.push_back(b.pos[c]);
+  return x;
 }
 
 }  // namespace rbd_test
