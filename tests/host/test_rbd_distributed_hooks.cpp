@@ -2,7 +2,8 @@
 // rank of the CPU backend: shadows (BodyStatus::shadow) move but meet only
 // active bodies; a solve through a BodyExchange that adds nothing is the solve
 // without one (for Gauss-Seidel, but for rounding), with one combine per iteration; the remembered contacts,
-// renumbered, keep the warm start; a method that does not run distributed says so.
+// renumbered, keep the warm start; a method that does not run distributed says
+// so; the check of a rank's own bodies where they live (OwnedBodiesCheck).
 #include <cmath>
 #include <cstdint>
 #include <set>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "catch_compat.hpp"
+#include "gpusolve/rbd/distributed/owned_bodies_check.hpp"
 #include "test_rbd_scenes.hpp"
 
 using namespace rbd_test;
@@ -164,4 +166,48 @@ TEST_CASE("distributed hooks: remembered contacts, renumbered, keep the warm sta
   };
   CHECK(run(true) < 1e-12);
   CHECK(run(false) > 1e-6);
+}
+
+TEST_CASE("distributed hooks: the check of a rank's own bodies finds those that must move, and their figures",
+          "[rbd_distributed]") {
+  // Rank 1 of two cells split at x = 2; shadows reach a body's bound plus 0.6.
+  const RankGrid<double> grid({2, 1, 1}, {0, 0, 0}, {4, 1, 1});
+  const int rank = 1;
+  const double reach = 0.6;
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);                                  // fixed: not counted
+  const std::size_t a = set.add_sphere({3, 0, 0.5}, 0.5, 2);    // 1.0 from cell 0: its shadow is there
+  const std::size_t b = set.add_sphere({3.5, 0, 0.5}, 0.5, 1);  // 1.5 from cell 0: no shadow
+  const std::size_t c = set.add_sphere({1, 0, 0.5}, 0.5, 1);    // rank 0's body: a shadow here, not counted
+  set[c].status = shadow;
+  set[a].v = {1, 2, 0}, set[a].w = {0, 0, 3};
+  set[b].v = {-1, 0, 0};
+  set[c].v = {5, 5, 5};
+  const std::vector<std::uint64_t> shadowed{0, 1, 0, 0};  // a: held by rank 0
+  // The check of the bodies in a World, after `change` to them there.
+  auto check = [&](const std::vector<std::uint64_t>& at, auto&& change) {
+    BodySet<double> copy = set;
+    World<device::cpu, double> w(copy, SolverSettings<double>{});
+    change(w.bodies());
+    OwnedBodiesCheck<device::cpu, double> owned;
+    owned.shadowed_at(at);
+    return owned.run(w.bodies().view(), grid, rank, reach);
+  };
+  const auto as_is = [](auto&) {};
+  const OwnedBodies here = check(shadowed, as_is);
+  CHECK(here.to_move == 0);
+  CHECK(here.count == 2);
+  CHECK(here.momentum[0] == Approx(2 * 1 - 1));
+  CHECK(here.momentum[1] == Approx(2 * 2));
+  CHECK(here.momentum[2] == 0);
+  // 1/2 m v^2 of both, and 1/2 (2/5 m r^2) w^2 of a.
+  CHECK(here.kinetic_energy == Approx(0.5 * 2 * 5 + 0.5 * 0.4 * 2 * 0.25 * 9 + 0.5 * 1 * 1));
+  // A shadow due where there is none, or none where there is one.
+  CHECK(check({0, 1, 1, 0}, as_is).to_move == 1);
+  CHECK(check({0, 0, 0, 0}, as_is).to_move == 1);
+  // A body that crossed into rank 0's cell (its shadow bit as it would be
+  // there: only the owner differs); one whose state is not finite.
+  CHECK(check({0, 1, 1, 0}, [&](auto& bodies) { bodies.pos(b, 0) = 1.9; }).to_move == 1);
+  CHECK(check(shadowed, [&](auto& bodies) { bodies.w(b, 1) = std::nan(""); }).to_move == 1);
+  CHECK(check(shadowed, [&](auto& bodies) { bodies.w(c, 1) = std::nan(""); }).to_move == 0);  // rank 0 checks its own
 }

@@ -20,6 +20,7 @@
 #include "gpusolve/rbd/bodies/body_set.hpp"
 #include "gpusolve/rbd/bodies/validation.hpp"
 #include "gpusolve/rbd/distributed/mpi_body_exchange.hpp"
+#include "gpusolve/rbd/distributed/owned_bodies_check.hpp"
 #include "gpusolve/rbd/distributed/rank_agreement.hpp"
 #include "gpusolve/rbd/distributed/rank_device.hpp"
 #include "gpusolve/rbd/distributed/rank_grid.hpp"
@@ -39,12 +40,14 @@ struct DistributedStats {
   T kinetic_energy = 0;         // of the moving bodies, each counted once
   std::array<T, 3> momentum{};  // sum of m v over the moving bodies
   std::size_t shadows = 0;      // shadow copies held, over the ranks
-  double seconds_bodies = 0;    // this rank: bodies and remembered contacts moved, shadows sent, the
-                                // World rebuilt (or its bodies checked) and its bodies read back
+  double seconds_bodies = 0;    // this rank: its bodies checked where they live and, before a step
+                                // that moves bodies between ranks, read back, sent with the
+                                // remembered contacts and the shadows, and the World rebuilt
   double seconds_exchange = 0;  // this rank: the solve's exchanges (sums and reductions), waits included
   double seconds_step = 0;      // this rank: the World's step, the solve's exchanges included (its
                                 // phases in local.time_*, with set_phase_timing)
-  bool rebuilt = false;         // the ranks' Worlds were rebuilt before the step (bodies changed ranks)
+  bool rebuilt = false;         // the ranks' Worlds were rebuilt before the step (bodies changed ranks):
+                                // only then were their bodies read back from where they live
 };
 
 // Each rank owns the moving bodies whose centre lies in its cell of a
@@ -56,15 +59,17 @@ struct DistributedStats {
 // their owners and the totals sent back (MpiBodyExchange); the residual
 // checks and the momentum's sums are reduced over the ranks. Before each
 // step, bodies that crossed into another cell move to its rank and the
-// shadows are sent again. A rank's bodies are kept in the order of their
+// shadows are sent again; whether any must is found where the bodies live
+// (OwnedBodiesCheck), so a step that moves none reads no body back. A rank's bodies are kept in the order of their
 // global ids, so every pair of bodies meets in the roles it has in one
 // World over the whole scene, and the warm start follows the renumbering.
 // Global ids: the bodies each rank passes in, numbered rank by rank.
 //
 // On either backend: each rank's World runs where its bodies live (ranks may
-// share a GPU); the bodies and the solve's sums travel through host memory
-// (MpiBodyExchange). Methods that run distributed: World's solves_distributed (jacobi, apgd
-// with Gather or UpdateCache sums, substepping over them). Every rank passes the same settings, and
+// share a GPU); the bodies that change ranks and the solve's sums travel
+// through host memory (MpiBodyExchange). Methods that run distributed: World's
+// solves_distributed (the Jacobi family with Gather or UpdateCache sums,
+// substepping over them, AcceleratedCG, coloured Gauss-Seidel). Every rank passes the same settings, and
 // a BodySet with the same materials and compound types (a compound's parts are
 // found by index on whichever rank holds it); the counts are checked. A rank that throws (a body
 // that is not valid or not finite, named by its global id) makes every rank
@@ -108,22 +113,18 @@ class DistributedWorld {
 
   // One step of the whole scene; every rank calls it. The ranks' Worlds are
   // rebuilt only where a body changes cells or ranks that need its shadow,
-  // or was modified: otherwise every shadow has moved exactly as its owner
-  // (the same velocity sums, the same integration), and only the bodies'
-  // states are checked.
+  // holds a state that is not finite (the rebuild's check names it on every
+  // rank), or was modified: otherwise every shadow has moved exactly as its
+  // owner (the same velocity sums, the same integration).
   DistributedStats<T> step() {
     const auto start = std::chrono::steady_clock::now();
-    collect_owned();
     DistributedStats<T> out;
     out.rebuilt = bodies_change();
     if (out.rebuilt) {
+      collect_owned();
       std::vector<std::vector<Remembered>> to = remembered_by_rank();
       owned_ = send_to_owners(owned_);
       rebuild(messages_.all_to_all(to));
-    } else {
-      agree_.run([&] {
-        for (const Placed& p : owned_) require_finite_state(p.body, p.gid);
-      });
     }
     ++steps_;
     const auto exchanged = std::chrono::steady_clock::now();
@@ -133,7 +134,7 @@ class DistributedWorld {
     out.seconds_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchanged).count();
     out.seconds_exchange = exchange_.take_seconds();
     const auto back = std::chrono::steady_clock::now();
-    collect_owned();
+    own_ = check_.run(world_->bodies().view(), *grid_, rank_, reach_);
     out.seconds_bodies = std::chrono::duration<double>(exchanged - start).count() +
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - back).count();
     out.local = st;
@@ -290,7 +291,7 @@ class DistributedWorld {
     return mine;
   }
 
-  // The owned bodies' state from the World after its last step.
+  // The owned bodies' state from the World after its last step, read back.
   void collect_owned() {
     if (!stepped_) return;
     world_->syncHost();
@@ -400,6 +401,8 @@ class DistributedWorld {
     }
     for (int r = 0; r < ranks_; ++r)
       for (std::size_t k : sent[r]) shared.copies[r].push_back(local_of_owned[k]);
+    std::vector<std::uint64_t> shadowed_by_local(all.size(), 0);
+    for (std::size_t k = 0; k < owned_.size(); ++k) shadowed_by_local[local_of_owned[k]] = shadowed_at_[k];
     // Every rank's bodies valid and finite before the World sees them, or the
     // same error on every rank, and no step.
     agree_.run([&] {
@@ -413,39 +416,29 @@ class DistributedWorld {
     world_->manager().syncDeviceFull();
     remember(moved);
     exchange_.share(shared);
+    check_.shadowed_at(shadowed_by_local);
+    own_ = OwnedBodies{};  // every body where it belongs, and finite
     modified_ = false;
   }
 
   // The lower ranks whose cells come within contact reach of body b, which
   // hold its shadow, as bits.
-  std::uint64_t shadow_ranks(const Body<T>& b) const {
-    std::uint64_t ranks = 0;
-    for (int r = 0; r < rank_; ++r)
-      if (grid_->distance(b.pos, r) <= bound(b) + reach_) ranks |= std::uint64_t(1) << r;
-    return ranks;
-  }
+  std::uint64_t shadow_ranks(const Body<T>& b) const { return grid_->ranks_within(b.pos, bound(b) + reach_, rank_); }
 
   // Whether any rank's bodies change before this step (a collective): a body
   // whose centre left its rank's cell, whose shadows are due on other ranks
-  // than where they are, or that was modified.
+  // than where they are, whose state is not finite (OwnedBodiesCheck after
+  // the last step), or that was modified.
   bool bodies_change() {
-    int change = modified_ ? 1 : 0;
-    for (std::size_t k = 0; k < owned_.size() && !change; ++k)
-      change = grid_->owner(owned_[k].body.pos) != rank_ || shadow_ranks(owned_[k].body) != shadowed_at_[k];
+    int change = modified_ || own_.to_move != 0 ? 1 : 0;
     MPI_Allreduce(MPI_IN_PLACE, &change, 1, MPI_INT, MPI_LOR, comm_);
     return change != 0;
   }
 
   // The step's figures over the ranks: owned bodies only, each contact once.
   void figures(const StepStats<T>& st, DistributedStats<T>& out) const {
-    double sums[6] = {0, 0, 0, 0, 0, 0};  // bodies, energy, momentum, shadows
-    for (const Placed& p : owned_) {
-      const Body<T>& b = p.body;
-      sums[0] += 1;
-      sums[1] += kinetic_energy(b);
-      for (int a = 0; a < 3; ++a) sums[2 + a] += double(b.v[a]) / double(b.inv_mass);
-    }
-    sums[5] = double(shadows_);
+    double sums[6] = {own_.count, own_.kinetic_energy, own_.momentum[0], own_.momentum[1], own_.momentum[2],
+                      double(shadows_)};  // bodies, energy, momentum, shadows
     MPI_Allreduce(MPI_IN_PLACE, sums, 6, MPI_DOUBLE, MPI_SUM, comm_);
     std::uint64_t contacts = st.solver.contacts;
     MPI_Allreduce(MPI_IN_PLACE, &contacts, 1, MPI_UINT64_T, MPI_SUM, comm_);
@@ -459,21 +452,6 @@ class DistributedWorld {
     out.max_penetration = penetration;
   }
 
-  // 1/2 m v^2 + 1/2 w . I w, with I in the world frame (R I_body R^T).
-  static double kinetic_energy(const Body<T>& b) {
-    const math::Quaternion<double> q(b.q[0], b.q[1], b.q[2], b.q[3]);
-    const auto R = math::to_rotation_matrix(q);
-    double wb[3] = {0, 0, 0};  // w in the body frame: R^T w
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k) wb[i] += R[3 * k + i] * double(b.w[k]);
-    double e = 0;
-    for (int i = 0; i < 3; ++i) {
-      e += double(b.v[i]) * double(b.v[i]) / double(b.inv_mass);
-      for (int k = 0; k < 3; ++k) e += wb[i] * double(b.inertia[3 * i + k]) * wb[k];
-    }
-    return e / 2;
-  }
-
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
   RankAgreement agree_;
@@ -485,6 +463,8 @@ class DistributedWorld {
   T reach_ = 0;  // a body is sent as a shadow to the cells within its bound plus this
   MpiBodyExchange<Device, T> exchange_;
   std::optional<LocalWorld> world_;
+  OwnedBodiesCheck<Device, T> check_;
+  OwnedBodies own_;  // the check of this rank's bodies after the last step or rebuild
   std::size_t shadows_ = 0;
   std::size_t steps_ = 0;  // steps taken
   bool stepped_ = false;  // the World holds state that owned_ has not taken back

@@ -1,13 +1,15 @@
 // RankGrid: the subdomains of a distributed world, a Cartesian grid of ranks
-// over a box (HCSITS's decomposition, Preclik and Rüde 2015). Plain C++: no MPI.
+// over a box (HCSITS's decomposition, Preclik and Rüde 2015). Plain C++: no
+// MPI; its queries run on the host and in kernels alike.
 #pragma once
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 
+#include "gpusolve/core/config.hpp"
 #include "gpusolve/core/error.hpp"
 
 namespace gpusolve::rbd {
@@ -33,33 +35,42 @@ class RankGrid {
   const std::array<int, 3>& dims() const { return dims_; }
 
   // The rank whose cell holds point p.
-  int owner(const Vec& p) const {
+  GPUSOLVE_HD int owner(const Vec& p) const {
     std::array<int, 3> c;
     for (int a = 0; a < 3; ++a) c[a] = cell_along(a, p[a]);
     return c[0] + dims_[0] * (c[1] + dims_[1] * c[2]);
   }
 
-  // The distance from p to rank r's cell (0 inside it).
-  T distance(const Vec& p, int r) const {
-    const std::array<int, 3> c{r % dims_[0], (r / dims_[0]) % dims_[1], r / (dims_[0] * dims_[1])};
-    T d2 = 0;
-    for (int a = 0; a < 3; ++a) {
-      const T below = lower(a, c[a]) - p[a], above = p[a] - upper(a, c[a]);
-      const T d = std::max({below, above, T(0)});
-      d2 += d * d;
-    }
-    return std::sqrt(d2);
+  // The ranks below `below` whose cells come within `reach` of point p, as
+  // bits (rank r: bit r; at most 64 ranks).
+  GPUSOLVE_HD std::uint64_t ranks_within(const Vec& p, T reach, int below) const {
+    std::uint64_t bits = 0;
+    for (int r = 0; r < below; ++r)
+      if (squared_distance(p, r) <= reach * reach) bits |= std::uint64_t(1) << r;
+    return bits;
   }
 
  private:
-  T width(int a) const { return (hi_[a] - lo_[a]) / T(dims_[a]); }
-  int cell_along(int a, T x) const {
+  // The squared distance from p to rank r's cell (0 inside it).
+  GPUSOLVE_HD T squared_distance(const Vec& p, int r) const {
+    const int c[3] = {r % dims_[0], (r / dims_[0]) % dims_[1], r / (dims_[0] * dims_[1])};
+    T d2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      const T below = lower(a, c[a]) - p[a], above = p[a] - upper(a, c[a]);
+      const T d = below > above ? (below > T(0) ? below : T(0)) : (above > T(0) ? above : T(0));
+      d2 += d * d;
+    }
+    return d2;
+  }
+  GPUSOLVE_HD T width(int a) const { return (hi_[a] - lo_[a]) / T(dims_[a]); }
+  GPUSOLVE_HD int cell_along(int a, T x) const {
     if (dims_[a] == 1 || !(x >= lo_[a] + width(a))) return 0;  // NaN goes to the first cell too
-    return std::min(dims_[a] - 1, int((x - lo_[a]) / width(a)));
+    const int c = int((x - lo_[a]) / width(a));
+    return c < dims_[a] - 1 ? c : dims_[a] - 1;
   }
   // Cell c's bounds along axis a; the outer ones are infinite.
-  T lower(int a, int c) const { return c == 0 ? -std::numeric_limits<T>::infinity() : lo_[a] + T(c) * width(a); }
-  T upper(int a, int c) const {
+  GPUSOLVE_HD T lower(int a, int c) const { return c == 0 ? -std::numeric_limits<T>::infinity() : lo_[a] + T(c) * width(a); }
+  GPUSOLVE_HD T upper(int a, int c) const {
     return c == dims_[a] - 1 ? std::numeric_limits<T>::infinity() : lo_[a] + T(c + 1) * width(a);
   }
 
