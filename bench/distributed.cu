@@ -2,10 +2,13 @@
 // many ranks mpirun starts, on the CPU backend or with every rank's World on
 // the one GPU (ranks sharing it):
 //   mpirun -np R gpusolve_bench_distributed [--backend cpu|gpu] [--mode defaults|jacobi10|gauss-seidel]
-//     [--n 100000 | --per-rank N] [--steps 300] [--csv FILE]
+//     [--transport mpi|nccl] [--n 100000 | --per-rank N] [--steps 300] [--csv FILE]
 // --mode: the library's defaults (APGD), projected Jacobi at exactly 10 iterations, or
 // coloured Gauss-Seidel at the defaults. --per-rank N: weak scaling, a pile of N spheres per
 // rank (N x R in all). On the GPU backend the ranks of a node take its GPUs in turn (use_rank_gpu).
+// --transport: the solve's sums through host memory with MPI (the default), or from GPU to GPU
+// with NCCL (a GPU per rank, a build that found NCCL); NCCL queues its exchanges on the solve's
+// stream, so `exchange` is then the time to queue them and the solve's time holds the rest.
 // Measured over the last third of the steps, medians, each phase the slowest
 // rank's: the whole step (host clock, every rank waits for the slowest at the
 // step's end); `bodies`, bodies moved between ranks, the Worlds rebuilt (or
@@ -48,8 +51,8 @@ struct Result {
 };
 
 template <class Device, class Method>
-Result run(const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T>& s) {
-  rbd::DistributedWorld<Device, T, rbd::ConeFriction, Method> world(MPI_COMM_WORLD, scene, s);
+Result run(const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T>& s, rbd::RankTransport transport) {
+  rbd::DistributedWorld<Device, T, rbd::ConeFriction, Method> world(MPI_COMM_WORLD, scene, s, std::nullopt, transport);
   world.set_phase_timing(true);
   std::vector<double> measured[phases];
   Result r;
@@ -78,10 +81,11 @@ Result run(const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T
 
 // The run at `mode`: APGD (the defaults), Jacobi (jacobi10) or coloured Gauss-Seidel.
 template <class Device>
-Result run_mode(const std::string& mode, const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T>& s) {
-  if (mode == "jacobi10") return run<Device, rbd::Jacobi<rbd::Gather>>(scene, steps, s);
-  if (mode == "gauss-seidel") return run<Device, rbd::ColouredGaussSeidel>(scene, steps, s);
-  return run<Device, rbd::AcceleratedJacobi<rbd::Gather>>(scene, steps, s);
+Result run_mode(const std::string& mode, const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T>& s,
+                rbd::RankTransport transport) {
+  if (mode == "jacobi10") return run<Device, rbd::Jacobi<rbd::Gather>>(scene, steps, s, transport);
+  if (mode == "gauss-seidel") return run<Device, rbd::ColouredGaussSeidel>(scene, steps, s, transport);
+  return run<Device, rbd::AcceleratedJacobi<rbd::Gather>>(scene, steps, s, transport);
 }
 
 }  // namespace
@@ -91,11 +95,12 @@ int main(int argc, char** argv) {
   std::size_t n = 100000;
   long steps = 300;
   std::size_t per_rank = 0;
-  std::string csv, backend = "cpu", mode = "defaults";
+  std::string csv, backend = "cpu", mode = "defaults", transport = "mpi";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--backend") backend = argv[i + 1];
     else if (a == "--mode") mode = argv[i + 1];
+    else if (a == "--transport") transport = argv[i + 1];
     else if (a == "--per-rank") per_rank = std::stoul(argv[i + 1]);
     else if (a == "--n") n = std::stoul(argv[i + 1]);
     else if (a == "--steps") steps = std::stol(argv[i + 1]);
@@ -107,13 +112,14 @@ int main(int argc, char** argv) {
   if (per_rank != 0) n = per_rank * std::size_t(ranks);
   rbd::BodySet<T> scene = bench::shared_pile<T>(n);
   if (rank != 0) scene.records().clear();  // rank 0 adds the scene; the world spreads it
-  if (mode != "defaults" && mode != "jacobi10" && mode != "gauss-seidel") {
+  if ((mode != "defaults" && mode != "jacobi10" && mode != "gauss-seidel") || (transport != "mpi" && transport != "nccl")) {
     if (rank == 0)
-      std::fprintf(stderr, "gpusolve_bench_distributed: --mode is defaults, jacobi10 or gauss-seidel, not '%s'\n",
-                   mode.c_str());
+      std::fprintf(stderr, "gpusolve_bench_distributed: --mode is defaults, jacobi10 or gauss-seidel, not '%s'; "
+                   "--transport is mpi or nccl, not '%s'\n", mode.c_str(), transport.c_str());
     MPI_Finalize();
     return 2;
   }
+  const rbd::RankTransport over = transport == "nccl" ? rbd::RankTransport::nccl : rbd::RankTransport::mpi_host;
   rbd::SolverSettings<T> s;
   if (mode == "jacobi10") s.max_iterations = 10, s.check_every = 10, s.tolerance = T(1e-30);  // runs all 10
   std::string gpu;
@@ -121,13 +127,20 @@ int main(int argc, char** argv) {
     cudaDeviceProp prop{};
     if (cudaGetDeviceProperties(&prop, rbd::use_rank_gpu(MPI_COMM_WORLD)) == cudaSuccess) gpu = prop.name;
   }
-  const Result r = backend == "gpu" ? run_mode<device::gpu>(mode, scene, steps, s) : run_mode<device::cpu>(mode, scene, steps, s);
+  Result r;
+  try {
+    r = backend == "gpu" ? run_mode<device::gpu>(mode, scene, steps, s, over) : run_mode<device::cpu>(mode, scene, steps, s, over);
+  } catch (const gpusolve::Error& e) {  // every rank throws alike
+    if (rank == 0) std::fprintf(stderr, "gpusolve_bench_distributed: %s\n", e.what());
+    MPI_Finalize();
+    return 1;
+  }
   if (rank == 0) {
     const int threads = std::getenv("OMP_NUM_THREADS") ? std::atoi(std::getenv("OMP_NUM_THREADS")) : 0;
-    std::printf("%s%s%s, %s, ranks %d (OMP_NUM_THREADS %d), %zu spheres, %ld steps: %.2f ms/step (bodies %.2f, detection "
+    std::printf("%s%s%s, %s over %s, ranks %d (OMP_NUM_THREADS %d), %zu spheres, %ld steps: %.2f ms/step (bodies %.2f, detection "
                 "%.2f, solve %.2f, exchange %.2f, integration %.2f), contacts %zu, shadows %zu, penetration %.4f%%, "
                 "rebuilt before %ld of the %ld measured steps\n",
-                backend.c_str(), gpu.empty() ? "" : " ", gpu.c_str(), mode.c_str(), ranks, threads, n, steps, r.ms[0], r.ms[1], r.ms[2], r.ms[3], r.ms[4], r.ms[5],
+                backend.c_str(), gpu.empty() ? "" : " ", gpu.c_str(), mode.c_str(), transport.c_str(), ranks, threads, n, steps, r.ms[0], r.ms[1], r.ms[2], r.ms[3], r.ms[4], r.ms[5],
                 r.last.contacts, r.last.shadows, 100 * r.penetration, r.rebuilds, steps / 3);
     if (!csv.empty()) {
       FILE* f = std::fopen(csv.c_str(), "a");
@@ -136,12 +149,12 @@ int main(int argc, char** argv) {
         if (std::ftell(f) == 0) {
           std::fprintf(f, "backend,ranks,threads_per_rank,n,steps");
           for (const char* p : phase_names) std::fprintf(f, ",ms_%s", p);
-          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds,mode,gpu,per_rank\n");
+          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds,mode,gpu,per_rank,transport\n");
         }
         std::fprintf(f, "%s,%d,%d,%zu,%ld", backend.c_str(), ranks, threads, n, steps);
         for (double x : r.ms) std::fprintf(f, ",%.4f", x);
-        std::fprintf(f, ",%zu,%zu,%.6g,%ld,%s,%s,%zu\n", r.last.contacts, r.last.shadows, r.penetration, r.rebuilds,
-                     mode.c_str(), gpu.c_str(), per_rank);
+        std::fprintf(f, ",%zu,%zu,%.6g,%ld,%s,%s,%zu,%s\n", r.last.contacts, r.last.shadows, r.penetration, r.rebuilds,
+                     mode.c_str(), gpu.c_str(), per_rank, transport.c_str());
         std::fclose(f);
       }
     }

@@ -3,7 +3,8 @@
 // GPUSOLVE_TEST_GPU, on the GPUs (the node's, taken in turn): piles of spheres, boxes,
 // capsules and unions match one World over the whole scene; bodies that cross
 // between ranks are neither lost nor doubled; a NaN in one rank's body and a
-// rank that throws are reported by every rank; a node's ranks take its GPUs in turn.
+// rank that throws are reported by every rank; a node's ranks take its GPUs in
+// turn; NCCL's exchange where each rank has a GPU (else it is refused).
 #define CATCH_CONFIG_RUNNER
 #include <mpi.h>
 
@@ -123,8 +124,10 @@ struct Compared {
 
 // `steps` steps of `scene` distributed and as one World; the bodies compared on rank 0.
 template <class Method>
-Compared compare(const BodySet<double>& scene, const SolverSettings<double>& s, int steps) {
-  DistributedWorld<TestDevice, double, ConeFriction, Method> dist(MPI_COMM_WORLD, on_rank_zero(scene), s);
+Compared compare(const BodySet<double>& scene, const SolverSettings<double>& s, int steps,
+                 RankTransport transport = RankTransport::mpi_host) {
+  DistributedWorld<TestDevice, double, ConeFriction, Method> dist(MPI_COMM_WORLD, on_rank_zero(scene), s,
+                                                                  std::nullopt, transport);
   BodySet<double> whole = scene;
   World<TestDevice, double, ConeFriction, Method> one(whole, s);
   Compared c;
@@ -317,6 +320,27 @@ TEST_CASE("distributed: the ranks of a node take its GPUs in turn", "[distribute
   CHECK(rank_gpu(p, 1) == 0);  // one GPU: shared by all
   CHECK(rank_gpu(p, 8) == rank_of_world() % 8);
   CHECK(rank_gpu({9, 16}, 8) == 1);  // more ranks than GPUs: round the GPUs again
+}
+
+TEST_CASE("distributed: NCCL carries the sums from GPU to GPU where every rank has a GPU of its own, and is "
+          "refused elsewhere on every rank", "[distributed]") {
+  auto with_nccl = [] {
+    return DistributedWorld<TestDevice, double>(MPI_COMM_WORLD, on_rank_zero(sphere_pile()), SolverSettings<double>{},
+                                                std::nullopt, RankTransport::nccl);
+  };
+#if defined(GPUSOLVE_TEST_GPU) && GPUSOLVE_WITH_NCCL
+  int gpus = 0;
+  REQUIRE(cudaGetDeviceCount(&gpus) == cudaSuccess);
+  if (node_place(MPI_COMM_WORLD).local_ranks > gpus) {
+    WARN("ranks share a GPU here: NCCL's exchange is checked to be refused, not run");
+    CHECK_THROWS_AS(with_nccl(), UnsupportedError);
+    return;
+  }
+  check_matches(compare<AcceleratedJacobi<Gather>>(box_pile(), SolverSettings<double>{}, 60, RankTransport::nccl), 75);
+  check_matches(compare<AcceleratedCG>(sphere_pile(), SolverSettings<double>{}, 60, RankTransport::nccl), 0);
+#else
+  CHECK_THROWS_AS(with_nccl(), UnsupportedError);  // the CPU backend, or a program built without NCCL
+#endif
 }
 
 TEST_CASE("distributed: a method that does not run distributed is refused on every rank", "[distributed]") {

@@ -75,3 +75,10 @@ using stream_t = void*;
 #endif
 
 }  // namespace gpusolve
+
+// NCCL, for a distributed world's exchange from GPU to GPU
+// (rbd/distributed/nccl_body_exchange.hpp): a program that links it defines
+// GPUSOLVE_WITH_NCCL=1 (CMake's gpusolve::nccl target does).
+#if !defined(GPUSOLVE_WITH_NCCL)
+#define GPUSOLVE_WITH_NCCL 0
+#endif

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -20,6 +21,9 @@
 #include "gpusolve/rbd/bodies/body_set.hpp"
 #include "gpusolve/rbd/bodies/validation.hpp"
 #include "gpusolve/rbd/distributed/mpi_body_exchange.hpp"
+#if GPUSOLVE_WITH_NCCL
+#include "gpusolve/rbd/distributed/nccl_body_exchange.hpp"
+#endif
 #include "gpusolve/rbd/distributed/owned_bodies_check.hpp"
 #include "gpusolve/rbd/distributed/rank_agreement.hpp"
 #include "gpusolve/rbd/distributed/rank_device.hpp"
@@ -29,6 +33,11 @@
 #include "gpusolve/rbd/world.hpp"
 
 namespace gpusolve::rbd {
+
+// How the ranks' solves exchange their sums: through host memory with MPI
+// (either backend; ranks may share a GPU), or from GPU to GPU with NCCL (the
+// GPU backend, a GPU per rank, a program built with GPUSOLVE_WITH_NCCL).
+enum class RankTransport { mpi_host, nccl };
 
 // The figures of one distributed step, the same on every rank.
 template <class T>
@@ -67,7 +76,8 @@ struct DistributedStats {
 //
 // On either backend: each rank's World runs where its bodies live (ranks may
 // share a GPU); the bodies that change ranks and the solve's sums travel
-// through host memory (MpiBodyExchange). Methods that run distributed: World's
+// through host memory (MpiBodyExchange), or with RankTransport::nccl the sums
+// from GPU to GPU (NcclBodyExchange). Methods that run distributed: World's
 // solves_distributed (the Jacobi family with Gather or UpdateCache sums,
 // substepping over them, AcceleratedCG, coloured Gauss-Seidel). Every rank passes the same settings, and
 // a BodySet with the same materials and compound types (a compound's parts are
@@ -83,10 +93,13 @@ class DistributedWorld {
 
   // `mine`: the bodies this rank adds (all on one rank and none on the
   // others, or any split). The grid spans the moving bodies' centres unless
-  // lo and hi are given.
+  // lo and hi are given. A transport this program cannot use
+  // (RankTransport::nccl on the CPU backend or without GPUSOLVE_WITH_NCCL)
+  // is refused on every rank with UnsupportedError.
   DistributedWorld(MPI_Comm comm, const BodySet<T>& mine, const SolverSettings<T>& settings,
-                   std::optional<std::pair<Vec, Vec>> box = std::nullopt)
-      : comm_(comm), agree_(comm), messages_(comm), local_(mine), exchange_(comm) {
+                   std::optional<std::pair<Vec, Vec>> box = std::nullopt,
+                   RankTransport transport = RankTransport::mpi_host)
+      : comm_(comm), agree_(comm), messages_(comm), local_(mine), exchange_(make_exchange(comm, transport)) {
     MPI_Comm_rank(comm, &rank_);
     MPI_Comm_size(comm, &ranks_);
     if (ranks_ > 64)
@@ -106,7 +119,7 @@ class DistributedWorld {
     world_.emplace(local_, settings);
     // One rank shares nothing: its World solves as any World does (on the GPU,
     // one persistent kernel); the method must still be one that runs distributed.
-    world_->set_exchange(&exchange_);
+    world_->set_exchange(exchange_.get());
     if (ranks_ == 1) world_->set_exchange(nullptr);
     rebuild({});
   }
@@ -128,11 +141,11 @@ class DistributedWorld {
     }
     ++steps_;
     const auto exchanged = std::chrono::steady_clock::now();
-    exchange_.take_seconds();
+    exchange_->take_seconds();
     const StepStats<T> st = world_->step();
     stepped_ = true;
     out.seconds_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchanged).count();
-    out.seconds_exchange = exchange_.take_seconds();
+    out.seconds_exchange = exchange_->take_seconds();
     const auto back = std::chrono::steady_clock::now();
     own_ = check_.run(world_->bodies().view(), *grid_, rank_, reach_);
     out.seconds_bodies = std::chrono::duration<double>(exchanged - start).count() +
@@ -199,6 +212,18 @@ class DistributedWorld {
     std::uint32_t feature;
     T values[remembered_width];
   };
+
+  // The exchange over `transport` (the same on every rank: it is a collective).
+  static std::unique_ptr<RankExchange<T>> make_exchange(MPI_Comm comm, RankTransport transport) {
+    if (transport == RankTransport::mpi_host) return std::make_unique<MpiBodyExchange<Device, T>>(comm);
+#if GPUSOLVE_WITH_NCCL
+    if constexpr (std::is_same_v<Device, device::gpu>) return std::make_unique<NcclBodyExchange<T>>(comm);
+#endif
+    throw UnsupportedError(std::is_same_v<Device, device::gpu>
+                               ? "gpusolve: DistributedWorld: RankTransport::nccl needs a program built with NCCL "
+                                 "(GPUSOLVE_WITH_NCCL)"
+                               : "gpusolve: DistributedWorld: RankTransport::nccl needs the GPU backend");
+  }
 
   // Global ids: this rank's bodies after those of the ranks before it.
   std::vector<Placed> number(const BodySet<T>& mine) const {
@@ -415,7 +440,7 @@ class DistributedWorld {
     shadows_ = came.size();
     world_->manager().syncDeviceFull();
     remember(moved);
-    exchange_.share(shared);
+    exchange_->share(shared);
     check_.shadowed_at(shadowed_by_local);
     own_ = OwnedBodies{};  // every body where it belongs, and finite
     modified_ = false;
@@ -461,7 +486,7 @@ class DistributedWorld {
   std::vector<Placed> fixed_, owned_;  // owned_: this rank's moving bodies, by id
   std::optional<RankGrid<T>> grid_;
   T reach_ = 0;  // a body is sent as a shadow to the cells within its bound plus this
-  MpiBodyExchange<Device, T> exchange_;
+  std::unique_ptr<RankExchange<T>> exchange_;
   std::optional<LocalWorld> world_;
   OwnedBodiesCheck<Device, T> check_;
   OwnedBodies own_;  // the check of this rank's bodies after the last step or rebuild

@@ -1,21 +1,17 @@
-// MpiBodyExchange: a BodyExchange over MPI between the ranks of a distributed
-// world, on either backend: the shared bodies' values are packed where the
-// bodies live and travel through host memory (MPI_Alltoallv).
+// MpiBodyExchange: the exchange of a distributed world through host memory
+// with MPI, on either backend: the shared bodies' values are packed where the
+// bodies live, copied to the host and sent with MPI_Alltoallv; reductions are
+// MPI_Allreduce. Each call waits for the backend's stream.
 #pragma once
 
-#include <chrono>
 #include <cstddef>
-#include <cstdint>
-#include <utility>
 #include <vector>
 
 #include <mpi.h>
 
-#include "gpusolve/container/vector_d1.hpp"
-#include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
+#include "gpusolve/rbd/distributed/body_sum_exchange.hpp"
 #include "gpusolve/rbd/execution/backend.hpp"
-#include "gpusolve/rbd/execution/body_exchange.hpp"
 
 namespace gpusolve::rbd {
 
@@ -31,153 +27,50 @@ inline MPI_Datatype mpi_type<double>() {
   return MPI_DOUBLE;
 }
 
-inline constexpr std::size_t exchanged_values = 6;  // dv, dw
-
-// Entry k of a list of bodies: its six sums into out[6k, 6k + 6).
-template <class T>
-struct PackSums {
-  VectorD2View<T> sums;
-  const std::uint32_t* bodies;
-  T* out;
-  GPUSOLVE_HD void operator()(std::size_t k) const {
-    for (std::size_t c = 0; c < exchanged_values; ++c) out[k * exchanged_values + c] = sums(bodies[k], c);
-  }
-};
-
-// Entry k of a list of bodies: in[6k, 6k + 6) added to its sums, or in their place.
-template <class T>
-struct UnpackSums {
-  VectorD2View<T> sums;
-  const std::uint32_t* bodies;
-  const T* in;
-  bool add;
-  GPUSOLVE_HD void operator()(std::size_t k) const {
-    for (std::size_t c = 0; c < exchanged_values; ++c) {
-      const T x = in[k * exchanged_values + c];
-      sums(bodies[k], c) = add ? sums(bodies[k], c) + x : x;
-    }
-  }
-};
+inline MPI_Op mpi_op(ExchangeOp op) {
+  return op == ExchangeOp::maximum ? MPI_MAX : op == ExchangeOp::minimum ? MPI_MIN : MPI_SUM;
+}
 }  // namespace detail
 
-// Which local bodies a rank shares with each other rank, set after every
-// exchange of bodies: shadows[r], the local indices of this rank's shadows of
-// bodies rank r owns; copies[r], the local indices of this rank's bodies that
-// rank r holds as shadows, both in the order in which the bodies were sent.
-struct SharedBodies {
-  std::vector<std::vector<std::size_t>> shadows, copies;
-};
-
-// combine(): every shadow's sums go to its owner, which adds them to its own
-// in the order of the ranks (a launch per rank: deterministic), and the totals
-// go back to every rank that holds a shadow of the body: two all-to-all
-// exchanges of six values per shared body. reduce(): MPI_Allreduce. Counts
-// the seconds it spends.
+// BodySumExchange's transport through host memory.
 template <class Device, class T>
-class MpiBodyExchange final : public BodyExchange<T> {
+class MpiTransport {
  public:
-  explicit MpiBodyExchange(MPI_Comm comm) : comm_(comm) {
-    MPI_Comm_size(comm, &ranks_);
-    share({std::vector<std::vector<std::size_t>>(ranks_), std::vector<std::vector<std::size_t>>(ranks_)});
+  explicit MpiTransport(MPI_Comm comm) : comm_(comm) { MPI_Comm_size(comm, &ranks_); }
+
+  int ranks() const { return ranks_; }
+
+  void send(const T* out, const std::vector<std::size_t>& out_counts, const std::vector<std::size_t>& out_offsets,
+            T* in, const std::vector<std::size_t>& in_counts, const std::vector<std::size_t>& in_offsets,
+            stream_t stream) {
+    const std::size_t out_n = total(out_counts), in_n = total(in_counts);
+    out_host_.resize(out_n), in_host_.resize(in_n);
+    detail::copy_with_host<Device>(out_host_.data(), out, out_n, true, stream);
+    MPI_Alltoallv(out_host_.data(), ints(out_counts).data(), ints(out_offsets).data(), detail::mpi_type<T>(),
+                  in_host_.data(), ints(in_counts).data(), ints(in_offsets).data(), detail::mpi_type<T>(), comm_);
+    detail::copy_with_host<Device>(in, in_host_.data(), in_n, false, stream);
   }
 
-  // The bodies shared from now on (after an exchange of bodies).
-  void share(const SharedBodies& shared) {
-    shadows_ = List(shared.shadows);
-    copies_ = List(shared.copies);
-  }
-
-  VectorD2View<T> sums(std::size_t bodies) override {
-    if (store_.size_x() < exchanged * bodies) store_.resize(exchanged * bodies);
-    return {store_.data(), bodies, exchanged, bodies};
-  }
-
-  void combine(std::size_t bodies, stream_t stream) override {
-    const auto start = std::chrono::steady_clock::now();
-    const VectorD2View<T> s = sums(bodies);
-    // Partial sums of the shadows up to their owners, added rank by rank ...
-    send(s, shadows_, copies_, stream);
-    for (int r = 0; r < ranks_; ++r)
-      if (const std::size_t n = copies_.count(r))
-        launch(Device{}, n,
-               detail::UnpackSums<T>{s, copies_.bodies.data() + copies_.first[r],
-                                     in_.data() + exchanged * copies_.first[r], true},
-               stream);
-    // ... and the owners' totals back to every shadow.
-    send(s, copies_, shadows_, stream);
-    if (const std::size_t n = shadows_.total())
-      launch(Device{}, n, detail::UnpackSums<T>{s, shadows_.bodies.data(), in_.data(), false}, stream);
-    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-
-  void reduce(T* value, ExchangeOp op, stream_t stream) override {
-    const auto start = std::chrono::steady_clock::now();
+  void reduce(T* value, ExchangeOp op, stream_t stream) {
     T x = detail::read_back<Device>(value, 0, stream);
-    MPI_Allreduce(MPI_IN_PLACE, &x, 1, detail::mpi_type<T>(), mpi_op(op), comm_);
+    MPI_Allreduce(MPI_IN_PLACE, &x, 1, detail::mpi_type<T>(), detail::mpi_op(op), comm_);
     detail::copy_with_host<Device>(value, &x, 1, false, stream);
-    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-
-  static MPI_Op mpi_op(ExchangeOp op) {
-    return op == ExchangeOp::maximum ? MPI_MAX : op == ExchangeOp::minimum ? MPI_MIN : MPI_SUM;
-  }
-
-  // Seconds spent in combine() and reduce() since the last call.
-  double take_seconds() {
-    const double s = seconds_;
-    seconds_ = 0;
-    return s;
   }
 
  private:
-  static constexpr std::size_t exchanged = detail::exchanged_values;
-
-  // Local body indices grouped by rank: rank r's at [first[r], first[r + 1])
-  // of `bodies`, on the backend.
-  struct List {
-    VectorD1<std::uint32_t, device_is<Device>> bodies;
-    std::vector<std::size_t> first{0};
-    List() = default;
-    explicit List(const std::vector<std::vector<std::size_t>>& by_rank) {
-      std::vector<std::uint32_t> flat;
-      for (const auto& l : by_rank) {
-        flat.insert(flat.end(), l.begin(), l.end());
-        first.push_back(flat.size());
-      }
-      bodies.resize(flat.size());
-      detail::copy_with_host<Device>(bodies.data(), flat.data(), flat.size(), false, stream_t{});
-    }
-    std::size_t count(int r) const { return first[r + 1] - first[r]; }
-    std::size_t total() const { return first.back(); }
-  };
-
-  // The values of `from`'s bodies to their ranks; those of `into`'s bodies
-  // arrive in in_ (device) in its order.
-  void send(const VectorD2View<T>& s, const List& from, const List& into, stream_t stream) {
-    const std::size_t out_n = exchanged * from.total(), in_n = exchanged * into.total();
-    if (packed_.size_x() < out_n) packed_.resize(out_n);
-    if (in_.size_x() < in_n) in_.resize(in_n);
-    if (from.total() != 0)
-      launch(Device{}, from.total(), detail::PackSums<T>{s, from.bodies.data(), packed_.data()}, stream);
-    out_host_.resize(out_n), in_host_.resize(in_n);
-    detail::copy_with_host<Device>(out_host_.data(), packed_.data(), out_n, true, stream);
-    std::vector<int> out_counts(ranks_), out_offsets(ranks_), in_counts(ranks_), in_offsets(ranks_);
-    for (int r = 0; r < ranks_; ++r) {
-      out_counts[r] = int(exchanged * from.count(r)), out_offsets[r] = int(exchanged * from.first[r]);
-      in_counts[r] = int(exchanged * into.count(r)), in_offsets[r] = int(exchanged * into.first[r]);
-    }
-    MPI_Alltoallv(out_host_.data(), out_counts.data(), out_offsets.data(), detail::mpi_type<T>(), in_host_.data(),
-                  in_counts.data(), in_offsets.data(), detail::mpi_type<T>(), comm_);
-    detail::copy_with_host<Device>(in_.data(), in_host_.data(), in_n, false, stream);
+  static std::size_t total(const std::vector<std::size_t>& counts) {
+    std::size_t n = 0;
+    for (std::size_t c : counts) n += c;
+    return n;
   }
+  static std::vector<int> ints(const std::vector<std::size_t>& v) { return std::vector<int>(v.begin(), v.end()); }
 
   MPI_Comm comm_;
   int ranks_ = 1;
-  List shadows_, copies_;
-  VectorD1<T, device_is<Device>> store_;           // sums(): bodies x 6, one row of bodies per value
-  VectorD1<T, device_is<Device>> packed_, in_;     // the values sent and received, on the backend
-  std::vector<T> out_host_, in_host_;              // the same on the host, for MPI
-  double seconds_ = 0;
+  std::vector<T> out_host_, in_host_;  // the values on the host, for MPI
 };
+
+template <class Device, class T>
+using MpiBodyExchange = BodySumExchange<Device, T, MpiTransport<Device, T>>;
 
 }  // namespace gpusolve::rbd
