@@ -1,7 +1,8 @@
 // Penetration from the bodies' states alone (statistics/state_penetration.hpp)
 // against overlaps computed by hand: two boxes face on face, edge on face,
 // corner on face; balls, capsules and planes; a compound's parts; a heap's
-// contacts; the atlas's box scenes, which must start apart.
+// contacts; the atlas's box scenes, which must start apart; only the pairs a
+// filter counts.
 #include <array>
 #include <cmath>
 
@@ -50,6 +51,21 @@ TEST_CASE("state penetration of two boxes: face, edge and corner against a face"
     CHECK(state_penetration(cube_on_cube(0.5 + 0.5 * s3 + 0.01, turn(std::acos(-1 / s3), -1 / s2, 1 / s2, 0)))
               .relative == 0);
   }
+}
+
+TEST_CASE("state penetration over the pairs a filter counts", "[state_penetration]") {
+  // Two balls of radius 0.5 sinking 0.1 and 0.2 into the floor, and touching nothing else.
+  BodySet<double> set;
+  set.add_plane({0, 0, 1}, 0);
+  const std::size_t shallow = set.add_sphere({0, 0, 0.4}, 0.5, 1);
+  const std::size_t deep = set.add_sphere({5, 0, 0.3}, 0.5, 1);
+  CHECK(state_penetration(set).relative == Approx(0.2 / 0.5));
+  CHECK(state_penetration(set).a == 0);
+  CHECK(state_penetration(set).b == deep);
+  const StatePenetration without_deep = state_penetration(set, [&](std::size_t i) { return i != deep; });
+  CHECK(without_deep.relative == Approx(0.1 / 0.5));
+  CHECK(without_deep.b == shallow);
+  CHECK(state_penetration(set, [](std::size_t i) { return i != 0; }).relative == 0);  // the floor left out
 }
 
 TEST_CASE("state penetration of balls, capsules, boxes and planes", "[state_penetration]") {

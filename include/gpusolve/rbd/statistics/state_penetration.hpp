@@ -176,12 +176,12 @@ void add_state_primitives(const BodySet<T>& set, std::size_t i, std::vector<Stat
 }  // namespace detail
 
 // The deepest overlap of any two bodies of `set` (at least one of them
-// moving; parts of one compound are not compared), from their states alone.
-// Candidate pairs come from a grid of the primitives' bounding spheres, whose
-// cell is the largest moving primitive's diameter; planes and larger fixed
-// primitives are tested against every primitive.
-template <class T>
-StatePenetration state_penetration(const BodySet<T>& set) {
+// moving; parts of one compound are not compared) for which counts(i) holds
+// of both, from their states alone. Candidate pairs come from a grid of the
+// primitives' bounding spheres, whose cell is the largest moving primitive's
+// diameter; planes and larger fixed primitives are tested against every primitive.
+template <class T, class Counts>
+StatePenetration state_penetration(const BodySet<T>& set, Counts counts) {
   std::vector<detail::StatePrimitive> prims;
   for (std::size_t i = 0; i < set.size(); ++i) detail::add_state_primitives(set, i, prims);
   double cell = 0;
@@ -190,7 +190,7 @@ StatePenetration state_penetration(const BodySet<T>& set) {
   if (!(cell > 0)) cell = 1;
   StatePenetration worst;
   const auto meet = [&](const detail::StatePrimitive& a, const detail::StatePrimitive& b) {
-    if (a.body == b.body || (!a.moving && !b.moving)) return;
+    if (a.body == b.body || (!a.moving && !b.moving) || !counts(a.body) || !counts(b.body)) return;
     if (a.kind != plane && b.kind != plane && math::norm(detail::V3(a.s.x - b.s.x)) >= a.bound + b.bound) return;
     const double depth = detail::primitive_depth(a.kind, a.s, b.kind, b.s);
     const double relative = depth / std::min(a.feature, b.feature);
@@ -226,6 +226,12 @@ StatePenetration state_penetration(const BodySet<T>& set) {
         }
   }
   return worst;
+}
+
+// The deepest overlap of any two bodies of `set`, every pair counted.
+template <class T>
+StatePenetration state_penetration(const BodySet<T>& set) {
+  return state_penetration(set, [](std::size_t) { return true; });
 }
 
 }  // namespace gpusolve::rbd
