@@ -226,6 +226,31 @@ TEST_CASE("box-box: crossed edges give one point between them", "[collision]") {
   check_points(box_box(up, b, 0.2f), {V(0.1f, 0.f, r2 + 0.05f)}, 0.1f);
 }
 
+TEST_CASE("box-box: a cube nearly flat over another's edge gives its face's points, not one edge point",
+          "[collision]") {
+  // b turned 0.6 rad about z and tilted 0.01 to 0.04 rad about x, its centre
+  // beyond a's edge at x = 0.5, its bottom 0.005 to 0.02 above a's top. An edge
+  // of each lies almost flat, their crossing axis almost vertical: before, that
+  // axis won and gave one point, leaving the rest of b's face free to sink into
+  // a within a step; the face's clipped points hold it.
+  const Shape a = cube(V());
+  for (float tilt : {0.01f, 0.02f, 0.04f})
+    for (float gap : {0.005f, 0.02f}) {
+      const M R = rotation(V(1.f, 0.f, 0.f), tilt) * rotation(V(0.f, 0.f, 1.f), 0.6f);
+      const Shape b = cube(V(0.8f, 0.1f, 1.f + gap + 0.6f * tilt), R);
+      const Man m = box_box(b, a, 0.1f);
+      INFO("tilt " << tilt << ", gap " << gap);
+      REQUIRE(m.count == 4);
+      CHECK(std::fabs(m.n[2]) > std::cos(tilt) - 1e-5f);  // b's face normal: a face contact
+      for (int k = 0; k < m.count; ++k) {
+        CHECK(m.points[k].p[0] < 0.5f + 1e-4f);  // over a
+        CHECK(m.points[k].gap > 0.f);
+        CHECK(m.points[k].gap < 0.1f);
+      }
+      check_swapped(m, box_box(a, b, 0.1f));
+    }
+}
+
 TEST_CASE("box-box and box-plane on random poses: unit normal, points within both boxes, none when apart",
           "[collision]") {
   std::mt19937 rng(20240611u);
