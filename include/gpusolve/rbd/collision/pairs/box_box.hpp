@@ -137,10 +137,12 @@ GPUSOLVE_HD bool box_edge_contact(const PlacedShape<T>& a, const PlacedShape<T>&
 }
 
 // Whether the edge axis L (length len) lies within 5 degrees of a face normal
-// of a or b: two edges lying flat on a face (a box on a seam of two others,
-// slabs laid crosswise). Their single crossing point would leave the rest of
-// the face free to sink through within the step (a cube tumbling onto the seam
-// of two boxes went 1.7% of its size into one); the face's clipped points hold it.
+// of a or b: two edges lying flat on a face (a box nearly flat across the seam
+// of two others). Their single crossing point would leave the rest of the face
+// free to sink through within the step (a cube tumbling onto the seam of two
+// boxes went 1.7% of its size into one); the face's clipped points hold it,
+// where they are no deeper than the edge axis says the boxes are (else the
+// face would push a box that overlaps little along the edge axis out by far).
 template <class T>
 GPUSOLVE_HD bool along_a_face(const PlacedShape<T>& a, const PlacedShape<T>& b, const math::Vector3<T>& L, T len) {
   const T cos_5_degrees = T(0.9962);
@@ -150,6 +152,14 @@ GPUSOLVE_HD bool along_a_face(const PlacedShape<T>& a, const PlacedShape<T>& b, 
   return false;
 }
 
+// The smallest gap among a manifold's points.
+template <class T>
+GPUSOLVE_HD T deepest_gap(const Manifold<T>& m) {
+  T g = m.points[0].gap;
+  for (int k = 1; k < m.count; ++k) g = std::fmin(g, m.points[k].gap);
+  return g;
+}
+
 }  // namespace detail
 
 // Box a against box b (half extents p[0..2]): the axis of least overlap among
@@ -157,7 +167,8 @@ GPUSOLVE_HD bool along_a_face(const PlacedShape<T>& a, const PlacedShape<T>& b, 
 // margin or more. Face axes win over edge axes unless those are clearly better
 // (5%), and a's faces over b's (2%), so near ties pick the same contact every
 // step; an edge axis whose edges do not cross falls back to the best face, and
-// one within 5 degrees of a face normal is that face's (along_a_face).
+// one within 5 degrees of a face normal gives way to the face where the
+// face's points are no deeper than the edges' separation (along_a_face).
 template <class T>
 GPUSOLVE_HD Manifold<T> box_box(const PlacedShape<T>& a, const PlacedShape<T>& b, T margin) {
   const math::Vector3<T> d = a.x - b.x;
@@ -171,7 +182,7 @@ GPUSOLVE_HD Manifold<T> box_box(const PlacedShape<T>& a, const PlacedShape<T>& b
     math::Vector3<T> L = k < 3 ? a.axis(k) : b.axis(k % 3);
     if (k >= 6) L = a.axis((k - 6) / 3) % b.axis((k - 6) % 3);
     const T len = math::norm(L);
-    if (k >= 6 && (len < parallel || detail::along_a_face(a, b, L, len))) continue;
+    if (k >= 6 && len < parallel) continue;
     const T s = (std::fabs(math::dot(d, L)) - detail::box_radius(a, L) - detail::box_radius(b, L)) / len;
     if (s >= margin) return {};
     const int g = k < 3 ? 0 : (k < 6 ? 1 : 2);
@@ -181,12 +192,18 @@ GPUSOLVE_HD Manifold<T> box_box(const PlacedShape<T>& a, const PlacedShape<T>& b
     return best[g] >= 0 && best_s[g] > best_s[than] + rel * (std::fabs(best_s[than]) + slop);
   };
   const int face = clearly(1, 0, T(0.02)) ? 1 : 0;
+  // A landing: the edge axis wins but lies along a face while the boxes are
+  // still apart along it (along_a_face); the face's points take it if no deeper.
+  const bool edge_wins = clearly(2, face, T(0.05));
+  const int i = edge_wins ? (best[2] - 6) / 3 : 0, j = edge_wins ? (best[2] - 6) % 3 : 0;
+  const math::Vector3<T> L = a.axis(i) % b.axis(j);
+  const bool landing = edge_wins && best_s[2] > T(0) && detail::along_a_face(a, b, L, math::norm(L));
   Manifold<T> m;
-  if (clearly(2, face, T(0.05)) &&
-      detail::box_edge_contact(a, b, (best[2] - 6) / 3, (best[2] - 6) % 3, margin, slop, m))
-    return m;
-  return face == 0 ? detail::box_face_contact(a, b, best[0], false, margin)
-                   : detail::box_face_contact(b, a, best[1] - 3, true, margin);
+  if (edge_wins && !landing && detail::box_edge_contact(a, b, i, j, margin, slop, m)) return m;
+  const Manifold<T> f = face == 0 ? detail::box_face_contact(a, b, best[0], false, margin)
+                                  : detail::box_face_contact(b, a, best[1] - 3, true, margin);
+  if (!landing || (f.count > 0 && detail::deepest_gap(f) >= best_s[2] - slop)) return f;
+  return detail::box_edge_contact(a, b, i, j, margin, slop, m) ? m : f;
 }
 
 }  // namespace gpusolve::rbd
