@@ -69,9 +69,10 @@ struct DistributedStats {
 // checks and the momentum's sums are reduced over the ranks. Before each
 // step, bodies that crossed into another cell move to its rank and the
 // shadows are sent again; whether any must is found where the bodies live
-// (OwnedBodiesCheck), so a step that moves none reads no body back. A rank's bodies are kept in the order of their
-// global ids, so every pair of bodies meets in the roles it has in one
-// World over the whole scene, and the warm start follows the renumbering.
+// (OwnedBodiesCheck), so a step that moves none reads no body back. A rank's
+// bodies are kept in the order of their global ids, so every pair of bodies
+// meets in the roles it has in one World over the whole scene, and the warm
+// start follows the renumbering.
 // Global ids: the bodies each rank passes in, numbered rank by rank.
 //
 // On either backend: each rank's World runs where its bodies live (ranks may
