@@ -137,17 +137,16 @@ GPUSOLVE_HD bool box_edge_contact(const PlacedShape<T>& a, const PlacedShape<T>&
 }
 
 // Whether the edge axis L (length len) lies within 5 degrees of a face normal
-// of a or b: two edges lying flat on a face (a box nearly flat across the seam
-// of two others). Their single crossing point would leave the rest of the face
-// free to sink through within the step (a cube tumbling onto the seam of two
-// boxes went 1.7% of its size into one); the face's clipped points hold it,
-// where they are no deeper than the edge axis says the boxes are (else the
-// face would push a box that overlaps little along the edge axis out by far).
+// of a or b: two edges lying flat on a face, as where a box comes down nearly
+// flat across the seam of two others. Their one crossing point would leave the
+// rest of the face free to sink in within the step (a cube tumbling onto such a
+// seam went 1.7% of its half extent into a box).
 template <class T>
 GPUSOLVE_HD bool along_a_face(const PlacedShape<T>& a, const PlacedShape<T>& b, const math::Vector3<T>& L, T len) {
   const T cos_5_degrees = T(0.9962);
   for (int k = 0; k < 3; ++k)
-    if (std::fabs(math::dot(a.axis(k), L)) > cos_5_degrees * len || std::fabs(math::dot(b.axis(k), L)) > cos_5_degrees * len)
+    if (std::fabs(math::dot(a.axis(k), L)) > cos_5_degrees * len ||
+        std::fabs(math::dot(b.axis(k), L)) > cos_5_degrees * len)
       return true;
   return false;
 }
@@ -166,9 +165,11 @@ GPUSOLVE_HD T deepest_gap(const Manifold<T>& m) {
 // the 6 face normals and 9 edge crossings, no points when one separates by the
 // margin or more. Face axes win over edge axes unless those are clearly better
 // (5%), and a's faces over b's (2%), so near ties pick the same contact every
-// step; an edge axis whose edges do not cross falls back to the best face, and
-// one within 5 degrees of a face normal gives way to the face where the
-// face's points are no deeper than the edges' separation (along_a_face).
+// step; an edge axis whose edges do not cross falls back to the best face. An
+// edge axis along a face (along_a_face) while the boxes are still apart along
+// it, a landing, gives way to the face where the face's points are no deeper
+// than the edges' separation; boxes already pressed together keep the edge
+// axis (the face's points pushed them out by far: docs/shapes.md).
 template <class T>
 GPUSOLVE_HD Manifold<T> box_box(const PlacedShape<T>& a, const PlacedShape<T>& b, T margin) {
   const math::Vector3<T> d = a.x - b.x;
@@ -192,8 +193,6 @@ GPUSOLVE_HD Manifold<T> box_box(const PlacedShape<T>& a, const PlacedShape<T>& b
     return best[g] >= 0 && best_s[g] > best_s[than] + rel * (std::fabs(best_s[than]) + slop);
   };
   const int face = clearly(1, 0, T(0.02)) ? 1 : 0;
-  // A landing: the edge axis wins but lies along a face while the boxes are
-  // still apart along it (along_a_face); the face's points take it if no deeper.
   const bool edge_wins = clearly(2, face, T(0.05));
   const int i = edge_wins ? (best[2] - 6) / 3 : 0, j = edge_wins ? (best[2] - 6) % 3 : 0;
   const math::Vector3<T> L = a.axis(i) % b.axis(j);
