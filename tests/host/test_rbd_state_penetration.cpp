@@ -2,9 +2,10 @@
 // against overlaps computed by hand: two boxes face on face, edge on face,
 // corner on face; balls, capsules and planes; a compound's parts; a heap's
 // contacts; the atlas's box scenes, which must start apart; only the pairs a
-// filter counts.
+// filter counts; each overlapping pair once, to one visitor.
 #include <array>
 #include <cmath>
+#include <map>
 
 #include "catch_compat.hpp"
 #include "gpusolve/rbd/statistics/state_penetration.hpp"
@@ -66,6 +67,28 @@ TEST_CASE("state penetration over the pairs a filter counts", "[state_penetratio
   CHECK(without_deep.relative == Approx(0.1 / 0.5));
   CHECK(without_deep.b == shallow);
   CHECK(state_penetration(set, [](std::size_t i) { return i != 0; }).relative == 0);  // the floor left out
+}
+
+TEST_CASE("every overlapping pair once, fixed pairs and separated ones not", "[state_penetration]") {
+  // Two balls of radius 0.5 0.1 into each other above the floor, one of them
+  // 0.05 into it, and two fixed boxes overlapping each other, which is no one's
+  // penetration; a third ball alone.
+  BodySet<double> set;
+  const std::size_t floor = set.add_plane({0, 0, 1}, 0);
+  const std::size_t a = set.add_sphere({0, 0, 0.45}, 0.5, 1), b = set.add_sphere({0.9, 0, 0.6}, 0.5, 1);
+  set.add_fixed_box({10, 0, 1}, {1, 1, 1});
+  set.add_fixed_box({11, 0, 1}, {1, 1, 1});
+  set.add_sphere({-5, 0, 3}, 0.5, 1);
+  std::map<std::pair<std::size_t, std::size_t>, double> seen;
+  int calls = 0;
+  for_each_state_overlap(set, [&](std::size_t i, std::size_t j, double relative) {
+    ++calls;
+    seen[{i, j}] = relative;
+  });
+  CHECK(calls == 2);
+  REQUIRE(seen.size() == 2);
+  CHECK(seen[{floor, a}] == Approx(0.05 / 0.5));
+  CHECK(seen[{a, b}] == Approx((1.0 - std::hypot(0.9, 0.15)) / 0.5));
 }
 
 TEST_CASE("state penetration of balls, capsules, boxes and planes", "[state_penetration]") {

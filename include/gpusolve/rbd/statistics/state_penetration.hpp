@@ -175,26 +175,26 @@ void add_state_primitives(const BodySet<T>& set, std::size_t i, std::vector<Stat
 
 }  // namespace detail
 
-// The deepest overlap of any two bodies of `set` (at least one of them
-// moving; parts of one compound are not compared) for which counts(i) holds
-// of both, from their states alone. Candidate pairs come from a grid of the
-// primitives' bounding spheres, whose cell is the largest moving primitive's
-// diameter; planes and larger fixed primitives are tested against every primitive.
-template <class T, class Counts>
-StatePenetration state_penetration(const BodySet<T>& set, Counts counts) {
+// Calls f(a, b, relative) for each pair of bodies of `set` (a < b, at least one
+// of them moving; parts of one compound are not compared) whose primitives
+// overlap, from their states alone: relative is the overlap over the smaller
+// feature size, once per overlapping primitive pair. Candidate pairs come from
+// a grid of the primitives' bounding spheres, whose cell is the largest moving
+// primitive's diameter; planes and larger fixed primitives are tested against
+// every primitive.
+template <class T, class F>
+void for_each_state_overlap(const BodySet<T>& set, F&& f) {
   std::vector<detail::StatePrimitive> prims;
   for (std::size_t i = 0; i < set.size(); ++i) detail::add_state_primitives(set, i, prims);
   double cell = 0;
   for (const auto& p : prims)
     if (p.moving && p.kind != plane) cell = std::max(cell, 2 * p.bound);
   if (!(cell > 0)) cell = 1;
-  StatePenetration worst;
   const auto meet = [&](const detail::StatePrimitive& a, const detail::StatePrimitive& b) {
-    if (a.body == b.body || (!a.moving && !b.moving) || !counts(a.body) || !counts(b.body)) return;
+    if (a.body == b.body || (!a.moving && !b.moving)) return;
     if (a.kind != plane && b.kind != plane && math::norm(detail::V3(a.s.x - b.s.x)) >= a.bound + b.bound) return;
     const double depth = detail::primitive_depth(a.kind, a.s, b.kind, b.s);
-    const double relative = depth / std::min(a.feature, b.feature);
-    if (relative > worst.relative) worst = {relative, std::min(a.body, b.body), std::max(a.body, b.body)};
+    if (depth > 0) f(std::min(a.body, b.body), std::max(a.body, b.body), depth / std::min(a.feature, b.feature));
   };
   // Planes and fixed primitives larger than a cell meet every primitive; the rest a grid.
   std::vector<bool> wide(prims.size());
@@ -225,6 +225,16 @@ StatePenetration state_penetration(const BodySet<T>& set, Counts counts) {
             if (j > k) meet(p, prims[j]);
         }
   }
+}
+
+// The deepest overlap of any two bodies of `set` for which counts(i) holds of
+// both (for_each_state_overlap's pairs).
+template <class T, class Counts>
+StatePenetration state_penetration(const BodySet<T>& set, Counts counts) {
+  StatePenetration worst;
+  for_each_state_overlap(set, [&](std::size_t a, std::size_t b, double relative) {
+    if (relative > worst.relative && counts(a) && counts(b)) worst = {relative, a, b};
+  });
   return worst;
 }
 
