@@ -8,8 +8,11 @@
 // shallow but the end overlaps deeply, the overlap grew where the solve had no
 // point (a feature the start's manifold did not hold), not from the solve.
 //
-// Run: gpusolve_bench_deepest_pairs [--scene cubes|mixed] [--n 10000] [--steps 2400]
-//        [--last 200] [--jump 0.004] [--backend gpu|cpu] [--csv FILE]
+// Run: gpusolve_bench_deepest_pairs [--scene cubes|mixed|rough] [--n 10000] [--steps 2400]
+//        [--last 200] [--jump 0.004] [--seed 1] [--backend gpu|cpu] [--csv FILE]
+// rough: 16 cubes thrown at 3 m/s, spinning, onto a floor of 64 fixed cubes
+// turned at random (shared_pile.hpp, rough_floor; --seed its draws), 400 steps,
+// every one of them looked at.
 // --jump: a step is explained where the deepest overlap, over the half extent,
 // exceeds this and is at least 1.5 times the step before's.
 // Prints each explained step and a summary; the CSV has one row per explained step.
@@ -31,8 +34,9 @@ using T = float;
 struct Options {
   std::string scene = "cubes", backend = "gpu", csv;
   std::size_t n = 10000;
-  long steps = 2400, last = 200;
+  long steps = 0, last = 0;  // 0: the scene's (2 400 and 200; rough 400 and 400)
   double jump = 0.004;
+  unsigned seed = 1;
 };
 
 // Body i of `set` placed as the narrow phase sees it, in double.
@@ -76,7 +80,9 @@ Seen see(const rbd::BodySet<T>& at, const rbd::BodySet<T>& moving, std::size_t a
 
 template <class Dev>
 int run(const Options& o) {
-  rbd::BodySet<T> set = o.scene == "mixed" ? bench::mixed_pile<T>(o.n) : bench::cube_pile<T>(o.n);
+  rbd::BodySet<T> set = o.scene == "mixed"   ? bench::mixed_pile<T>(o.n)
+                        : o.scene == "rough" ? bench::rough_floor<T>(o.seed)
+                                             : bench::cube_pile<T>(o.n);
   rbd::SolverSettings<T> s;
   s.friction = T(0.5);
   rbd::World<Dev, T> world(set, s);
@@ -114,10 +120,11 @@ int run(const Options& o) {
     previous = worst.relative;
   }
   if (csv) std::fclose(csv);
-  std::printf("%s n=%zu (%s backend): deepest overlap over the last %ld steps %.3f%%; %d jumps explained, %d of them "
+  const std::string what = o.scene == "rough" ? "seed " + std::to_string(o.seed) : "n=" + std::to_string(o.n);
+  std::printf("%s %s (%s backend): deepest overlap over the last %ld steps %.3f%%; %d jumps explained, %d of them "
               "from an edge contact at the start, %d where the start's points, moved by the step's velocities, are less "
               "than half as deep as the end's overlap\n",
-              o.scene.c_str(), o.n, o.backend.c_str(), o.last, 100 * deepest, explained, edge_starts, unforeseen);
+              o.scene.c_str(), what.c_str(), o.backend.c_str(), o.last, 100 * deepest, explained, edge_starts, unforeseen);
   return 0;
 }
 
@@ -125,7 +132,8 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
   Options o;
-  const char* usage = "[--scene cubes|mixed] [--n N] [--steps N] [--last N] [--jump X] [--backend gpu|cpu] [--csv FILE]";
+  const char* usage = "[--scene cubes|mixed|rough] [--n N] [--steps N] [--last N] [--jump X] [--seed N] [--backend gpu|cpu] "
+      "[--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--scene") o.scene = bench::option_value(argc, argv, i);
@@ -133,11 +141,16 @@ int main(int argc, char** argv) {
     else if (a == "--steps") o.steps = std::stol(bench::option_value(argc, argv, i));
     else if (a == "--last") o.last = std::stol(bench::option_value(argc, argv, i));
     else if (a == "--jump") o.jump = std::stod(bench::option_value(argc, argv, i));
+    else if (a == "--seed") o.seed = unsigned(std::stoul(bench::option_value(argc, argv, i)));
     else if (a == "--backend") o.backend = bench::option_value(argc, argv, i);
     else if (a == "--csv") o.csv = bench::option_value(argc, argv, i);
     else bench::usage_exit(argv[0], usage, a);
   }
-  if ((o.scene != "cubes" && o.scene != "mixed") || (o.backend != "gpu" && o.backend != "cpu") || o.last < 1)
+  const bool rough = o.scene == "rough";
+  if (o.steps == 0) o.steps = rough ? 400 : 2400;
+  if (o.last == 0) o.last = rough ? o.steps : 200;
+  if ((o.scene != "cubes" && o.scene != "mixed" && !rough) || (o.backend != "gpu" && o.backend != "cpu") ||
+      o.last < 1 || o.last > o.steps)
     bench::usage_exit(argv[0], usage, "");
   return o.backend == "cpu" ? run<device::cpu>(o) : run<device::gpu>(o);
 }

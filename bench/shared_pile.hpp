@@ -217,6 +217,34 @@ rbd::BodySet<T> slab_tower(std::size_t count) {
   return set;
 }
 
+// A rough floor: 8 x 8 fixed cubes (half extent 1) 2.5 apart, turned at
+// random, and 16 cubes (mass 1) 4 above them, 5 apart, turned at random,
+// thrown down at `speed` m/s (and sideways up to half that), spinning at up to
+// about `spin` rad/s about each axis. Random draws from std::mt19937 seeded `seed`.
+template <class T>
+rbd::BodySet<T> rough_floor(unsigned seed, double speed = 3, double spin = 3) {
+  rbd::BodySet<T> set;
+  std::mt19937 gen(seed);
+  std::normal_distribution<double> normal(0, 1);
+  std::uniform_real_distribution<double> jitter(-0.5, 0.5);
+  const auto turn = [&] {
+    double q[4], len = 0;
+    for (double& x : q) x = normal(gen), len += x * x;
+    len = std::sqrt(len);
+    return std::array<T, 4>{T(q[0] / len), T(q[1] / len), T(q[2] / len), T(q[3] / len)};
+  };
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) set.add_fixed_box({T(i * 2.5), T(j * 2.5), 0}, {1, 1, 1}, turn());
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const std::array<T, 3> x{T(1.25 + i * 5.0 + jitter(gen)), T(1.25 + j * 5.0 + jitter(gen)), 4};
+      const std::size_t k = set.add_box(x, {1, 1, 1}, 1, turn());
+      set[k].v = {T(speed * jitter(gen)), T(speed * jitter(gen)), T(-speed)};
+      set[k].w = {T(spin * normal(gen)), T(spin * normal(gen)), T(spin * normal(gen))};
+    }
+  return set;
+}
+
 // `count` unit cubes stacked on the floor, exactly aligned.
 template <class T>
 rbd::BodySet<T> box_stack(std::size_t count) {

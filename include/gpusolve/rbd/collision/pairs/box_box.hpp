@@ -164,8 +164,9 @@ GPUSOLVE_HD T deepest_gap(const Manifold<T>& m) {
 // Box a against box b (half extents p[0..2]): the axis of least overlap among
 // the 6 face normals and 9 edge crossings, no points when one separates by the
 // margin or more. Face axes win over edge axes unless those are clearly better
-// (5%), and a's faces over b's (2%), so near ties pick the same contact every
-// step; an edge axis whose edges do not cross falls back to the best face. An
+// (5% and a fifth of the slop), and a's faces over b's (2%), so near ties pick
+// the same contact every step; an edge axis whose edges do not cross falls back
+// to the best face. An
 // edge axis along a face (along_a_face) while the boxes are still apart along
 // it, a landing, gives way to the face where the face's points are no deeper
 // than the edges' separation; boxes already pressed together keep the edge
@@ -193,7 +194,9 @@ GPUSOLVE_HD Manifold<T> box_box(const PlacedShape<T>& a, const PlacedShape<T>& b
     return best[g] >= 0 && best_s[g] > best_s[than] + rel * (std::fabs(best_s[than]) + slop);
   };
   const int face = clearly(1, 0, T(0.02)) ? 1 : 0;
-  const bool edge_wins = clearly(2, face, T(0.05));
+  // An edge beats the face by 5% of the overlap and a fifth of the slop: near
+  // touching, a face's points hold a box tipping off an edge (docs/shapes.md).
+  const bool edge_wins = best[2] >= 0 && best_s[2] > best_s[face] + T(0.05) * std::fabs(best_s[face]) + T(0.2) * slop;
   const int i = edge_wins ? (best[2] - 6) / 3 : 0, j = edge_wins ? (best[2] - 6) % 3 : 0;
   const math::Vector3<T> L = a.axis(i) % b.axis(j);
   const bool landing = edge_wins && best_s[2] > T(0) && detail::along_a_face(a, b, L, math::norm(L));
