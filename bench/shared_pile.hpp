@@ -59,16 +59,21 @@ rbd::BodySet<T> shared_pile(std::size_t n) {
   return set;
 }
 
-// Random orientations as docs/piles.md draws them: four normal(0, 1) draws on
-// std::mt19937(2), normalised.
+// A random orientation: four draws of `normal` (0, 1) on `gen`, normalised.
+template <class T>
+std::array<T, 4> random_turn(std::mt19937& gen, std::normal_distribution<double>& normal) {
+  double q[4], len = 0;
+  for (double& x : q) x = normal(gen), len += x * x;
+  len = std::sqrt(len);
+  return {T(q[0] / len), T(q[1] / len), T(q[2] / len), T(q[3] / len)};
+}
+
+// Random orientations as docs/piles.md draws them: random_turn on std::mt19937(2).
 class RandomTurns {
  public:
   template <class T>
   std::array<T, 4> next() {
-    double q[4], len = 0;
-    for (double& x : q) x = normal_(gen_), len += x * x;
-    len = std::sqrt(len);
-    return {T(q[0] / len), T(q[1] / len), T(q[2] / len), T(q[3] / len)};
+    return random_turn<T>(gen_, normal_);
   }
 
  private:
@@ -227,12 +232,7 @@ rbd::BodySet<T> rough_floor(unsigned seed, double speed = 3, double spin = 3) {
   std::mt19937 gen(seed);
   std::normal_distribution<double> normal(0, 1);
   std::uniform_real_distribution<double> jitter(-0.5, 0.5);
-  const auto turn = [&] {
-    double q[4], len = 0;
-    for (double& x : q) x = normal(gen), len += x * x;
-    len = std::sqrt(len);
-    return std::array<T, 4>{T(q[0] / len), T(q[1] / len), T(q[2] / len), T(q[3] / len)};
-  };
+  const auto turn = [&] { return random_turn<T>(gen, normal); };
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < 8; ++j) set.add_fixed_box({T(i * 2.5), T(j * 2.5), 0}, {1, 1, 1}, turn());
   for (int i = 0; i < 4; ++i)

@@ -241,9 +241,7 @@ TEST_CASE("cubes tumbling onto the seams of a floor of boxes do not sink into it
   std::uniform_real_distribution<double> jitter(-0.5, 0.5);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
-      Q q{normal(rng), normal(rng), normal(rng), normal(rng)};
-      const double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-      for (double& c : q) c /= len;
+      const Q q = gpusolve::bench::random_turn<double>(rng, normal);
       const std::size_t k = set.add_box({1 + i * 4.0 + jitter(rng), 1 + j * 4.0 + jitter(rng), 4.5}, {1, 1, 1}, 1.0, q);
       set[k].v = {0, 0, -8};
       set[k].w = {5 * normal(rng), 5 * normal(rng), 5 * normal(rng)};
