@@ -166,11 +166,11 @@ GPUSOLVE_HD T deepest_gap(const Manifold<T>& m) {
 // margin or more. Face axes win over edge axes unless those are clearly better
 // (5% and a fifth of the slop), and a's faces over b's (2%), so near ties pick
 // the same contact every step; an edge axis whose edges do not cross falls back
-// to the best face. An
-// edge axis along a face (along_a_face) while the boxes are still apart along
-// it, a landing, gives way to the face where the face's points are no deeper
-// than the edges' separation; boxes already pressed together keep the edge
-// axis (the face's points pushed them out by far: docs/shapes.md).
+// to the best face. An edge axis along a face (along_a_face) while the boxes
+// are still apart along it, a landing, gives way to the face where the face's
+// points are no deeper than the edges' separation; boxes already pressed
+// together keep the edge axis (the face's points pushed them out by far:
+// docs/shapes.md).
 template <class T>
 GPUSOLVE_HD Manifold<T> box_box(const PlacedShape<T>& a, const PlacedShape<T>& b, T margin) {
   const math::Vector3<T> d = a.x - b.x;
