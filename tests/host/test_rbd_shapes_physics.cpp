@@ -227,6 +227,20 @@ void check_cube_slides_flat() {
 
 }  // namespace
 
+// The deepest overlap from the states over `steps` steps of a World of `set`
+// at the defaults (CPU backend), each step's end.
+template <class T>
+double deepest_overlap_stepping(BodySet<T>& set, int steps) {
+  World<device::cpu, T> w(set, SolverSettings<T>{});
+  double deepest = 0;
+  for (int step = 0; step < steps; ++step) {
+    w.step();
+    w.syncHost();
+    deepest = std::max(deepest, state_penetration(set).relative);
+  }
+  return deepest;
+}
+
 TEST_CASE("cubes tumbling onto the seams of a floor of boxes do not sink into it", "[rbd_physics][shapes]") {
   // A floor of 8 x 8 fixed cubes (side 2) side by side, and 16 cubes thrown
   // down at 8 m/s, spinning, from 2.5 m above it: most land across seams.
@@ -246,13 +260,7 @@ TEST_CASE("cubes tumbling onto the seams of a floor of boxes do not sink into it
       set[k].v = {0, 0, -8};
       set[k].w = {5 * normal(rng), 5 * normal(rng), 5 * normal(rng)};
     }
-  World<device::cpu, double> w(set, SolverSettings<double>{});
-  double deepest = 0;
-  for (int step = 0; step < 240; ++step) {
-    w.step();
-    w.syncHost();
-    deepest = std::max(deepest, state_penetration(set).relative);
-  }
+  const double deepest = deepest_overlap_stepping(set, 240);
   INFO("deepest overlap " << deepest << " of a half extent");
   CHECK(deepest < 2e-3);
 }
@@ -266,13 +274,7 @@ TEST_CASE("cubes tipping off the edges of a rough floor do not sink into it", "[
   // and 6 above 0.4%; gpusolve_bench_deepest_pairs --scene rough explains them).
   for (unsigned seed = 1; seed <= 8; ++seed) {
     BodySet<float> set = gpusolve::bench::rough_floor<float>(seed);
-    World<device::cpu, float> w(set, SolverSettings<float>{});
-    double deepest = 0;
-    for (int step = 0; step < 400; ++step) {
-      w.step();
-      w.syncHost();
-      deepest = std::max(deepest, state_penetration(set).relative);
-    }
+    const double deepest = deepest_overlap_stepping(set, 400);
     INFO("seed " << seed << ": deepest overlap " << deepest << " of a half extent");
     CHECK(deepest < 3e-3);
   }
