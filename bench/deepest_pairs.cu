@@ -19,7 +19,6 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <vector>
 
 #include "gpusolve/rbd/collision/pairs/box_box.hpp"
 #include "gpusolve/rbd/statistics/state_penetration.hpp"
@@ -56,8 +55,9 @@ struct Seen {
   double deepest = 0, predicted = 0;  // m
 };
 
-Seen see(const rbd::BodySet<T>& at, const rbd::BodySet<T>& moving, std::size_t a, std::size_t b, double dt) {
-  const rbd::Manifold<double> m = rbd::box_box<double>(placed(at, a), placed(at, b), 0.1);
+Seen see(const rbd::BodySet<T>& at, const rbd::BodySet<T>& moving, std::size_t a, std::size_t b, double dt,
+         double margin) {
+  const rbd::Manifold<double> m = rbd::box_box<double>(placed(at, a), placed(at, b), margin);
   Seen s;
   s.points = m.count;
   if (m.count == 0) return s;
@@ -102,7 +102,8 @@ int run(const Options& o) {
     });
     const bool boxes = set[worst.a].shape == rbd::box && set[worst.b].shape == rbd::box;
     if (step >= o.steps - o.last && boxes && worst.relative > o.jump && worst.relative > 1.5 * previous) {
-      const Seen before = see(start, set, worst.a, worst.b, double(s.dt)), after = see(set, set, worst.a, worst.b, 0);
+      const Seen before = see(start, set, worst.a, worst.b, double(s.dt), double(s.margin)),
+                 after = see(set, set, worst.a, worst.b, 0, double(s.margin));
       ++explained;
       edge_starts += before.edge;
       unforeseen += before.points > 0 && after.deepest < 0 && before.predicted > 0.5 * after.deepest;
