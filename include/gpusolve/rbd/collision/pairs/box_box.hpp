@@ -8,6 +8,7 @@
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/collision/manifold.hpp"
 #include "gpusolve/rbd/collision/pairs/reduce_points.hpp"
+#include "gpusolve/rbd/collision/pairs/segment.hpp"
 #include "gpusolve/rbd/collision/placed_shape.hpp"
 
 namespace gpusolve::rbd {
@@ -21,6 +22,7 @@ namespace gpusolve::rbd {
 //     set when the reference face is b's, bit 13 clear.
 //   edge contact: bit 13 set, bits 0-3 a's edge, 4-7 b's edge, each 4 axis +
 //     2 (+ side of axis+1) + (+ side of axis+2).
+//   closest points of boxes apart past an edge or corner: bit 14 alone.
 namespace detail {
 
 // A vertex of the clipped polygon and the tags of its incoming and outgoing edges.
@@ -151,6 +153,33 @@ GPUSOLVE_HD bool along_a_face(const PlacedShape<T>& a, const PlacedShape<T>& b, 
   return false;
 }
 
+// The point of box b closest to the world point w (w itself inside b).
+template <class T>
+GPUSOLVE_HD math::Vector3<T> closest_in_box(const PlacedShape<T>& b, const math::Vector3<T>& w) {
+  math::Vector3<T> l = b.to_local(w);
+  for (int k = 0; k < 3; ++k) l[k] = clamp_to(l[k], -b.p[k], b.p[k]);
+  return b.to_world(l);
+}
+
+// Boxes apart whose least separating axis leaves nothing to clip: one box
+// beside and above another's edge or corner, no face over a face. One point
+// along the line of their closest points, found by alternating projections
+// (each a clamp in one box's frame; they converge to the closest pair of two
+// convex sets), its gap their separation along that line, which never exceeds
+// their distance. Without it such a pair had no contact, and a cube passing a
+// box's edge fast went 2% of its half extent into it within a step.
+template <class T>
+GPUSOLVE_HD Manifold<T> box_closest_contact(const PlacedShape<T>& a, const PlacedShape<T>& b, T margin) {
+  math::Vector3<T> pb = closest_in_box(b, a.x), pa = closest_in_box(a, pb);
+  for (int k = 0; k < 8; ++k) pb = closest_in_box(b, pa), pa = closest_in_box(a, pb);
+  const math::Vector3<T> d = pa - pb;
+  const T len = math::norm(d);
+  if (!(len > T(0))) return {};
+  const math::Vector3<T> n = (T(1) / len) * d;
+  const T gap = math::dot(math::Vector3<T>(a.x - b.x), n) - box_radius(a, n) - box_radius(b, n);
+  return within_margin(one_point<T>(pb, n, gap, 1u << 14), margin);
+}
+
 // The smallest gap among a manifold's points.
 template <class T>
 GPUSOLVE_HD T deepest_gap(const Manifold<T>& m) {
@@ -170,7 +199,8 @@ GPUSOLVE_HD T deepest_gap(const Manifold<T>& m) {
 // are still apart along it, a landing, gives way to the face where the face's
 // points are no deeper than the edges' separation; boxes already pressed
 // together keep the edge axis (the face's points pushed them out by far:
-// docs/shapes.md).
+// docs/shapes.md). Boxes apart with no face over a face (past an edge or a
+// corner) get one point at their closest points.
 template <class T>
 GPUSOLVE_HD Manifold<T> box_box(const PlacedShape<T>& a, const PlacedShape<T>& b, T margin) {
   const math::Vector3<T> d = a.x - b.x;
@@ -204,8 +234,10 @@ GPUSOLVE_HD Manifold<T> box_box(const PlacedShape<T>& a, const PlacedShape<T>& b
   if (edge_wins && !landing && detail::box_edge_contact(a, b, i, j, margin, slop, m)) return m;
   const Manifold<T> f = face == 0 ? detail::box_face_contact(a, b, best[0], false, margin)
                                   : detail::box_face_contact(b, a, best[1] - 3, true, margin);
-  if (!landing || (f.count > 0 && detail::deepest_gap(f) >= best_s[2] - slop)) return f;
-  return detail::box_edge_contact(a, b, i, j, margin, slop, m) ? m : f;
+  const bool face_holds = f.count > 0 && detail::deepest_gap(f) >= best_s[2] - slop;
+  if (landing && !face_holds && detail::box_edge_contact(a, b, i, j, margin, slop, m)) return m;
+  const bool apart = best_s[0] > T(0) || best_s[1] > T(0) || best_s[2] > T(0);  // an axis separates them
+  return f.count > 0 || !apart ? f : detail::box_closest_contact(a, b, margin);
 }
 
 }  // namespace gpusolve::rbd
