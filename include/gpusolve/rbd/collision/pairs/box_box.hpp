@@ -175,14 +175,14 @@ GPUSOLVE_HD math::Vector3<T> closest_in_box(const PlacedShape<T>& b, const math:
 // a clamp in one box's frame; they converge to the closest pair of two convex
 // sets, slowly where faces are nearly parallel), its gap their separation
 // along that line. Where that line does not yet separate them as well as the
-// best of the 15 axes (axis k, separating them by s > 0), the point takes that
-// axis and s instead: either way the gap is positive and never exceeds their distance.
+// best of the 15 axes (sat_axis `axis`, separating them by s > 0), the point
+// takes that axis and s instead: the gap is positive and never exceeds their distance.
 // Without it such a pair had no contact, and a cube thrown at a box's edge
 // went up to 1.7% of its half extent into it within a step.
 template <class T>
-GPUSOLVE_HD_NOINLINE Manifold<T> box_closest_contact(const PlacedShape<T>& a, const PlacedShape<T>& b, int k, T s,
+GPUSOLVE_HD_NOINLINE Manifold<T> box_closest_contact(const PlacedShape<T>& a, const PlacedShape<T>& b, int axis, T s,
                                                      T margin) {
-  math::Vector3<T> L = sat_axis(a, b, k);
+  math::Vector3<T> L = sat_axis(a, b, axis);
   L = math::Vector3<T>((T(1) / math::norm(L)) * L);
   math::Vector3<T> pb = closest_in_box(b, a.x), pa = closest_in_box(a, pb);
   GPUSOLVE_NO_UNROLL
