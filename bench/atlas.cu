@@ -4,7 +4,7 @@
 //
 // Run: gpusolve_bench_atlas --scene pile|cubes|mixed|clumps|unions|column|pyramid|stack|field|slabs|hopper [--n 10000,100000] [--ratios 1,100,1000]
 //        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg]
-//        [--budgets default,it10,it20,s4x5,tol0.02,check10,corr0.4,launched,unanchored] [--margins 0.1]
+//        [--budgets default,it10,it20,s4x5,tol0.02,stop0.001,check10,corr0.4,launched,unanchored] [--margins 0.1]
 //        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, docs/piles.md), N spheres dropped into
@@ -30,7 +30,8 @@
 // Budgets: "default" is SolverSettings{} as a user gets it (tolerance, iteration
 // cap and residual checks as shipped); "itK" runs exactly K iterations per step,
 // the residual measured once after the last; "tolX" iterates to tolerance X
-// (cap 2 000, checked every 10); "checkK" is the defaults with the residual
+// (cap 2 000, checked every 10); "stopX" stops at tolerance X checked every 10
+// iterations within the defaults' cap; "checkK" is the defaults with the residual
 // checked every K iterations; "sSxK" is S substeps of exactly K iterations each
 // (the substepping method; the others run S K iterations). Every run: the cone model, friction 0.5 (the
 // hopper: 0.1).
@@ -40,9 +41,10 @@
 // --phases: World::set_phase_timing on; the medians of detection, solve and
 // integration over the last third go to the ms_detection.. columns (0 without).
 // --budgets: the defaults changed by one thing: itK, K iterations; tolX, the
-// tolerance X; sSxK, S substeps of K; checkK, a check every K; launched, the
-// solve as launches instead of the persistent kernel; unanchored, no friction
-// anchors; corrX, the share X of a penetration removed per step (correction).
+// tolerance X; stopX, the stopping rule X (tolerance and a check every 10);
+// sSxK, S substeps of K; checkK, a check every K; launched, the solve as
+// launches instead of the persistent kernel; unanchored, no friction anchors;
+// corrX, the share X of a penetration removed per step (correction).
 // Measured, over the last third of the steps: time per whole step (detection,
 // solve, integration and World's statistics, what a user's loop pays) with CUDA
 // events around World::step, mean and median; mean iterations; the median final
@@ -165,6 +167,9 @@ SolverSettings<T> settings_for(const Run& r) {
     s.tolerance = std::numeric_limits<T>::min();
   } else if (r.budget.rfind("check", 0) == 0) {
     s.check_every = std::stoul(r.budget.substr(5));
+  } else if (r.budget.rfind("stop", 0) == 0) {
+    s.tolerance = T(std::stod(r.budget.substr(4)));  // a stopping rule within the defaults' cap
+    s.check_every = 10;
   } else if (r.budget.rfind("corr", 0) == 0) {
     s.correction = T(std::stod(r.budget.substr(4)));  // the defaults with another share of a penetration removed per step
   } else if (r.budget == "launched") {
@@ -173,7 +178,7 @@ SolverSettings<T> settings_for(const Run& r) {
     s.friction_anchors = false;  // the defaults without friction anchors
   } else if (r.budget != "default") {
     throw InvalidArgumentError("atlas: unknown budget '" + r.budget +
-                               "' (default, itK, sSxK, tolX, checkK, corrX, launched or unanchored)");
+                               "' (default, itK, sSxK, tolX, stopX, checkK, corrX, launched or unanchored)");
   }
   return s;
 }
