@@ -3,9 +3,13 @@
 // active bodies; a solve through a BodyExchange that adds nothing is the solve
 // without one (for Gauss-Seidel, but for rounding), with one combine per iteration; the remembered contacts,
 // renumbered, keep the warm start; a method that does not run distributed says
-// so; the check of a rank's own bodies where they live (OwnedBodiesCheck).
+// so; the check of a rank's own bodies where they live (OwnedBodiesCheck); a
+// rank's neighbourhood of cells (RankGrid) at any number of ranks.
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <random>
 #include <set>
 #include <utility>
 #include <vector>
@@ -171,7 +175,7 @@ TEST_CASE("distributed hooks: remembered contacts, renumbered, keep the warm sta
 TEST_CASE("distributed hooks: the check of a rank's own bodies finds those that must move, and their figures",
           "[rbd_distributed]") {
   // Rank 1 of two cells split at x = 2; shadows reach a body's bound plus 0.6.
-  const RankGrid<double> grid({2, 1, 1}, {0, 0, 0}, {4, 1, 1});
+  const RankGrid<double> grid({2, 1, 1}, {0, 0, 0}, {4, 1, 1}, 1.1);
   const int rank = 1;
   const double reach = 0.6;
   BodySet<double> set;
@@ -210,4 +214,60 @@ TEST_CASE("distributed hooks: the check of a rank's own bodies finds those that 
   CHECK(check({0, 1, 1, 0}, [&](auto& bodies) { bodies.pos(b, 0) = 1.9; }).to_move == 1);
   CHECK(check(shadowed, [&](auto& bodies) { bodies.w(b, 1) = std::nan(""); }).to_move == 1);
   CHECK(check(shadowed, [&](auto& bodies) { bodies.w(c, 1) = std::nan(""); }).to_move == 0);  // rank 0 checks its own
+}
+
+TEST_CASE("distributed hooks: a rank's neighbourhood holds every lower rank within reach, at any number of ranks",
+          "[rbd_distributed]") {
+  // Grids of up to 240 ranks, cells narrower and wider than the reach: the
+  // ranks that ranks_within names for a point in a rank's cell (through
+  // neighbour()) are exactly the lower ranks whose cells, outer ones reaching
+  // to infinity, lie within the reach, found here by testing every rank.
+  struct Case {
+    std::array<int, 3> dims;
+    double reach;
+  };
+  const std::array<double, 3> lo{-10, 0, 1}, hi{30, 16, 7};
+  std::mt19937 rng(3);
+  for (const Case& g : {Case{{10, 8, 3}, 1.5}, Case{{10, 8, 1}, 2.5}, Case{{40, 1, 1}, 2.5}, Case{{3, 2, 1}, 50}}) {
+    const RankGrid<double> grid(g.dims, lo, hi, g.reach);
+    const int ranks = grid.ranks();
+    auto cell_edge = [&](int a, int c, bool upper) {
+      const double w = (hi[a] - lo[a]) / g.dims[a], inf = std::numeric_limits<double>::infinity();
+      if (upper) return c == g.dims[a] - 1 ? inf : lo[a] + (c + 1) * w;
+      return c == 0 ? -inf : lo[a] + c * w;
+    };
+    auto cell = [&](int r) {
+      return std::array<int, 3>{r % g.dims[0], (r / g.dims[0]) % g.dims[1], r / (g.dims[0] * g.dims[1])};
+    };
+    int named = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+      const int rank = std::uniform_int_distribution<int>(0, ranks - 1)(rng);
+      std::array<double, 3> p;
+      for (int a = 0; a < 3; ++a) {  // a point in rank's cell, now and then outside the box
+        const double l = std::fmax(cell_edge(a, cell(rank)[a], false), lo[a] - 3);
+        const double u = std::fmin(cell_edge(a, cell(rank)[a], true), hi[a] + 3);
+        p[a] = std::uniform_real_distribution<double>(l, u)(rng);
+      }
+      REQUIRE(grid.owner(p) == rank);
+      const double reach = std::uniform_real_distribution<double>(0, g.reach)(rng);
+      std::set<int> expected, found;
+      for (int r = 0; r < rank; ++r) {
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a) {
+          const double d = std::fmax(0.0, std::fmax(cell_edge(a, cell(r)[a], false) - p[a], p[a] - cell_edge(a, cell(r)[a], true)));
+          d2 += d * d;
+        }
+        if (d2 <= reach * reach) expected.insert(r);
+      }
+      const std::uint64_t bits = grid.ranks_within(p, reach, rank);
+      for (int bit = 0; bit < 64; ++bit)
+        if (bits >> bit & 1u) found.insert(grid.neighbour(rank, bit));
+      INFO("dims " << g.dims[0] << " x " << g.dims[1] << " x " << g.dims[2] << ", rank " << rank << ", reach " << reach);
+      CHECK(found == expected);
+      named += int(found.size());
+    }
+    CHECK(named > 0);  // the cases do name neighbours
+  }
+  // A reach across more than 64 cells is refused, naming the cells.
+  CHECK_THROWS_AS((RankGrid<double>({20, 20, 1}, lo, hi, 5.0)), UnsupportedError);
 }

@@ -103,15 +103,15 @@ class DistributedWorld {
       : comm_(comm), agree_(comm), messages_(comm), local_(mine), exchange_(make_exchange(comm, transport)) {
     MPI_Comm_rank(comm, &rank_);
     MPI_Comm_size(comm, &ranks_);
-    if (ranks_ > 64)
-      throw UnsupportedError("gpusolve: DistributedWorld: at most 64 ranks (a body's shadow ranks are kept as bits)");
     local_.records().clear();
     require_same_everywhere(mine);
     std::vector<Placed> added = number(mine);
     agree_.run([&] { validate(added); });
     const std::vector<Placed> fixed_everywhere = gather_fixed(added);
-    grid_.emplace(dims(), box ? box->first : span(added).first, box ? box->second : span(added).second);
-    reach_ = largest_bound(added) + settings.margin;
+    const T largest = largest_bound(added);
+    reach_ = largest + settings.margin;
+    grid_.emplace(dims(), box ? box->first : span(added).first, box ? box->second : span(added).second,
+                  largest + reach_);
     std::vector<Placed> owned;
     for (const Placed& p : added)
       if (p.body.status != fixed) owned.push_back(p);
@@ -377,8 +377,9 @@ class DistributedWorld {
     shadowed_at_.resize(owned_.size());
     for (std::size_t k = 0; k < owned_.size(); ++k) {
       shadowed_at_[k] = shadow_ranks(owned_[k].body);
-      for (int r = 0; r < rank_; ++r)
-        if (shadowed_at_[k] >> r & 1u) {
+      for (int bit = 0; bit < 64; ++bit)
+        if (shadowed_at_[k] >> bit & 1u) {
+          const int r = grid_->neighbour(rank_, bit);
           to[r].push_back(owned_[k]);
           sent[r].push_back(k);
         }
@@ -411,7 +412,6 @@ class DistributedWorld {
     shared.shadows.assign(ranks_, {});
     shared.copies.assign(ranks_, {});
     std::vector<std::size_t> local_of_owned(owned_.size());
-    std::vector<std::vector<std::size_t>> shadows_by_rank(ranks_);
     for (std::size_t k = 0; k < all.size(); ++k) {
       gids[k] = all[k].gid;
       records[k] = all[k].p->body;
@@ -448,7 +448,7 @@ class DistributedWorld {
   }
 
   // The lower ranks whose cells come within contact reach of body b, which
-  // hold its shadow, as bits.
+  // hold its shadow, as bits over this rank's neighbourhood (RankGrid).
   std::uint64_t shadow_ranks(const Body<T>& b) const { return grid_->ranks_within(b.pos, bound(b) + reach_, rank_); }
 
   // Whether any rank's bodies change before this step (a collective): a body
