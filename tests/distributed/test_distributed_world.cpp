@@ -194,6 +194,11 @@ TEST_CASE("distributed: 72 ranks step a pile of spheres as one World does", "[.]
   REQUIRE(ranks_of_world() > 64);
   const Compared c = compare<AcceleratedJacobi<Gather>>(sphere_pile(), SolverSettings<double>{}, 20);
   check_matches(c, 0);
+  // A body whose reach spans more than 64 of the cells is refused, on every rank alike.
+  BodySet<double> scene = sphere_pile();
+  scene.add_sphere({3, 3, 12}, 4.0, 1.0);
+  CHECK_THROWS_AS((DistributedWorld<TestDevice, double>(MPI_COMM_WORLD, on_rank_zero(scene), SolverSettings<double>{})),
+                  UnsupportedError);
 }
 
 TEST_CASE("distributed: a pile of boxes steps as one World does, under Jacobi and substepping too",
