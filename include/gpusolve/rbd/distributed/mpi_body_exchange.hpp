@@ -1,7 +1,9 @@
 // MpiBodyExchange: the exchange of a distributed world through host memory
 // with MPI, on either backend: the shared bodies' values are packed where the
-// bodies live, copied to the host and sent with MPI_Alltoallv; reductions are
-// MPI_Allreduce. Each call waits for the backend's stream.
+// bodies live, copied to the host and sent to the ranks that share them
+// (MPI_Isend and MPI_Irecv, so a rank waits on its neighbours only, not on
+// every rank as an all-to-all does); reductions are MPI_Allreduce. Each call
+// waits for the backend's stream.
 #pragma once
 
 #include <cstddef>
@@ -46,8 +48,16 @@ class MpiTransport {
     const std::size_t out_n = total(out_counts), in_n = total(in_counts);
     out_host_.resize(out_n), in_host_.resize(in_n);
     detail::copy_with_host<Device>(out_host_.data(), out, out_n, true, stream);
-    MPI_Alltoallv(out_host_.data(), ints(out_counts).data(), ints(out_offsets).data(), detail::mpi_type<T>(),
-                  in_host_.data(), ints(in_counts).data(), ints(in_offsets).data(), detail::mpi_type<T>(), comm_);
+    requests_.clear();
+    for (int r = 0; r < ranks_; ++r)
+      if (in_counts[r] != 0)
+        MPI_Irecv(in_host_.data() + in_offsets[r], int(in_counts[r]), detail::mpi_type<T>(), r, 0, comm_,
+                  &requests_.emplace_back());
+    for (int r = 0; r < ranks_; ++r)
+      if (out_counts[r] != 0)
+        MPI_Isend(out_host_.data() + out_offsets[r], int(out_counts[r]), detail::mpi_type<T>(), r, 0, comm_,
+                  &requests_.emplace_back());
+    MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
     detail::copy_with_host<Device>(in, in_host_.data(), in_n, false, stream);
   }
 
@@ -63,11 +73,11 @@ class MpiTransport {
     for (std::size_t c : counts) n += c;
     return n;
   }
-  static std::vector<int> ints(const std::vector<std::size_t>& v) { return std::vector<int>(v.begin(), v.end()); }
 
   MPI_Comm comm_;
   int ranks_ = 1;
   std::vector<T> out_host_, in_host_;  // the values on the host, for MPI
+  std::vector<MPI_Request> requests_;
 };
 
 template <class Device, class T>
