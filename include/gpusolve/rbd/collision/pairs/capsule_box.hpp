@@ -188,11 +188,13 @@ GPUSOLVE_HD Manifold<T> capsule_box(const PlacedShape<T>& capsule, const PlacedS
       if (t_max < hi) hi = t_max;
     }
     // The contact found above stays in: where the core runs just beside the
-    // face's rectangle its closest part is outside the clip (gaps there are
-    // taken along the face normal).
+    // face's rectangle its closest part is outside the clip. That end keeps
+    // the gap found above: along the face normal it would read deeper than
+    // the core is, by up to a thousandth of the distance.
+    bool kept[2] = {false, false};
     if (hi >= lo) {
-      if (tc < lo) lo = tc;
-      if (tc > hi) hi = tc;
+      if (tc < lo) lo = tc, kept[0] = true;
+      if (tc > hi) hi = tc, kept[1] = true;
     }
     if ((hi - lo) * 2 * L > T(1e-3) * scale) {
       Manifold<T> m;
@@ -202,7 +204,8 @@ GPUSOLVE_HD Manifold<T> capsule_box(const PlacedShape<T>& capsule, const PlacedS
       for (int j = 0; j < 2; ++j) {
         const T t = j == 0 ? lo : hi;
         V Pj = P0 + t * D;
-        const T g = sg * Pj[k] - h[k] - r;
+        const T along = sg * Pj[k] - h[k] - r;
+        const T g = kept[j] && gap > along ? gap : along;
         for (int i = 0; i < 3; ++i) Pj[i] = detail::clamp_to(Pj[i], -h[i], h[i]);
         Pj[k] = sg * h[k];  // the core point's foot on the face (within its rectangle)
         if (g < margin) m.add(V(box.to_world(Pj) + (g / 2) * m.n), g, std::uint32_t(j));
