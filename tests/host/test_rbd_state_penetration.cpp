@@ -118,6 +118,15 @@ TEST_CASE("state penetration of balls, capsules, boxes and planes", "[state_pene
     set.add_capsule({0.5 + 0.6 + 0.2 - 0.04, 0, 5}, 0.2, 0.6, 1.0);
     CHECK(state_penetration(set).relative == Approx(0.04 / 0.2));
   }
+  SECTION("a capsule across a box's edge near its end, 0.01 in: the deepest point inside the segment") {
+    // The core crosses the edge along y at (0.5, 5.5) at right angles, 0.19
+    // from it, 0.8 along from the centre: only a short stretch of it overlaps.
+    set.add_fixed_box({0, 0, 5}, {0.5, 0.5, 0.5});
+    const double r2 = std::sqrt(0.5);
+    const std::array<double, 3> crossing{0.5 + 0.19 * r2, 0, 5.5 + 0.19 * r2}, u{r2, 0, -r2};
+    set.add_capsule({crossing[0] - 0.8 * u[0], 0, crossing[2] - 0.8 * u[2]}, 0.2, 1.0, 1.0, turn(M_PI / 4, 0, 1, 0));
+    CHECK(state_penetration(set).relative == Approx(0.01 / 0.2));
+  }
   SECTION("two crossing capsules 0.06 into each other") {
     set.add_capsule({0, 0, 5}, 0.2, 1.0, 1.0);
     set.add_capsule({0, 0, 5.34}, 0.2, 1.0, 1.0, turn(M_PI / 2, 0, 0, 1));

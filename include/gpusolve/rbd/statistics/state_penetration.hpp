@@ -71,9 +71,11 @@ inline double box_box_depth(const PlacedShape<double>& a, const PlacedShape<doub
   return depth;
 }
 
-// A ball of radius r at c against a box: r less the distance from c to the
-// box, or, with c inside, r plus c's distance to the nearest face.
-inline double ball_box_depth(const V3& c, double r, const PlacedShape<double>& box) {
+// A ball of radius r at c against a box: r less the signed distance from c
+// to the box (outside, the distance; inside, less its distance to the nearest
+// face). Negative while apart: concave along a line, as the signed distance to
+// a convex body is convex.
+inline double ball_box_signed_depth(const V3& c, double r, const PlacedShape<double>& box) {
   const V3 local = box.to_local(c);
   double outside2 = 0, inside = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k) {
@@ -81,7 +83,10 @@ inline double ball_box_depth(const V3& c, double r, const PlacedShape<double>& b
     if (excess > 0) outside2 += excess * excess;
     inside = std::min(inside, -excess);
   }
-  return outside2 > 0 ? std::max(0.0, r - std::sqrt(outside2)) : r + inside;
+  return outside2 > 0 ? r - std::sqrt(outside2) : r + inside;
+}
+inline double ball_box_depth(const V3& c, double r, const PlacedShape<double>& box) {
+  return std::max(0.0, ball_box_signed_depth(c, r, box));
 }
 
 // A capsule's segment ends.
@@ -123,8 +128,10 @@ inline double primitive_depth(ShapeKind ka, const PlacedShape<double>& a, ShapeK
     const auto c = segment_segment_closest(e[0], e[1], ends[0], ends[1]);
     return std::max(0.0, a.p[0] + b.p[0] - std::sqrt(c.dist2));
   }
-  const auto depth_at = [&](double t) {  // ka == box
-    return ball_box_depth(V3(ends[0] + (ends[1] - ends[0]) * t), b.p[0], a);
+  // ka == box. Signed, not clamped at zero: on a clamped depth a short stretch
+  // of overlap between the search's probes read zero and was cut away.
+  const auto depth_at = [&](double t) {
+    return ball_box_signed_depth(V3(ends[0] + (ends[1] - ends[0]) * t), b.p[0], a);
   };
   double lo = 0, hi = 1;
   for (int k = 0; k < 80; ++k) {  // (2/3)^80: below 1e-14 of the segment
@@ -134,7 +141,7 @@ inline double primitive_depth(ShapeKind ka, const PlacedShape<double>& a, ShapeK
     else
       hi = m2;
   }
-  return std::max({depth_at(0), depth_at(1), depth_at((lo + hi) / 2)});
+  return std::max({0.0, depth_at(0), depth_at(1), depth_at((lo + hi) / 2)});
 }
 
 template <class T>
