@@ -356,6 +356,40 @@ TEST_CASE("distributed: NCCL carries the sums from GPU to GPU where every rank h
 #endif
 }
 
+// Rank s sends rank r records (s, r, round, j) for j < count(s, r, round):
+// none to most ranks, to itself sometimes, different in every round.
+TEST_CASE("distributed: the sparse exchange delivers every record once, rank by rank in the order sent",
+          "[distributed][many_ranks]") {
+  const int me = rank_of_world(), ranks = ranks_of_world();
+  auto count = [](int s, int r, int round) { return (s * 7 + r * 3 + round * 5) % 4 == 0 ? (s + r + round) % 3 + 1 : 0; };
+  struct Record {
+    int sender, receiver, round, j;
+  };
+  RankMessages messages(MPI_COMM_WORLD);
+  std::size_t wrong = 0, received = 0, expected = 0;
+  for (int round = 0; round < 12; ++round) {  // rounds back to back, so messages of the next round overtake
+    std::vector<std::vector<Record>> to(ranks);
+    for (int r = 0; r < ranks; ++r)
+      for (int j = 0; j < count(me, r, round); ++j) to[r].push_back({me, r, round, j});
+    std::vector<int> from;
+    const std::vector<Record> came = messages.exchange(to, &from);
+    std::vector<Record> want;
+    for (int s = 0; s < ranks; ++s)
+      for (int j = 0; j < count(s, me, round); ++j) want.push_back({s, me, round, j});
+    expected += want.size(), received += came.size();
+    if (came.size() != want.size() || from.size() != came.size()) {
+      ++wrong;
+      continue;
+    }
+    for (std::size_t k = 0; k < came.size(); ++k)
+      wrong += came[k].sender != want[k].sender || came[k].receiver != me || came[k].round != round ||
+               came[k].j != want[k].j || from[k] != want[k].sender;
+  }
+  INFO("rank " << me << " of " << ranks << ": " << received << " records of " << expected);
+  CHECK(wrong == 0);
+  CHECK(received == expected);
+}
+
 TEST_CASE("distributed: a method that does not run distributed is refused on every rank", "[distributed]") {
   CHECK_THROWS_AS((DistributedWorld<TestDevice, double, ConeFriction, Jacobi<Atomic>>(MPI_COMM_WORLD,
                                                                             on_rank_zero(sphere_pile()),

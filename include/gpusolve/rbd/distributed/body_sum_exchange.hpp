@@ -2,7 +2,8 @@
 // between its ranks. combine() sends every shadow's sums to its owner, which
 // adds them to its own in the order of the ranks (a launch per rank:
 // deterministic), and sends the totals back to every rank that holds a shadow
-// of the body: two all-to-all exchanges of six values per shared body, packed
+// of the body: two exchanges of six values per shared body between the ranks
+// that share it, packed
 // and unpacked where the bodies live. The transport moves them: through host
 // memory with MPI (mpi_body_exchange.hpp) or between GPUs with NCCL
 // (nccl_body_exchange.hpp).

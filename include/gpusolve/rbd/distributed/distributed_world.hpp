@@ -138,7 +138,7 @@ class DistributedWorld {
       collect_owned();
       std::vector<std::vector<Remembered>> to = remembered_by_rank();
       owned_ = send_to_owners(owned_);
-      rebuild(messages_.all_to_all(to));
+      rebuild(messages_.exchange(to));
     }
     ++steps_;
     const auto exchanged = std::chrono::steady_clock::now();
@@ -309,10 +309,10 @@ class DistributedWorld {
 
   // Sends each body to the rank whose cell holds its centre; returns the
   // bodies this rank owns, in the order of their ids.
-  std::vector<Placed> send_to_owners(const std::vector<Placed>& bodies) const {
+  std::vector<Placed> send_to_owners(const std::vector<Placed>& bodies) {
     std::vector<std::vector<Placed>> to(ranks_);
     for (const Placed& p : bodies) to[grid_->owner(p.body.pos)].push_back(p);
-    std::vector<Placed> mine = messages_.all_to_all(to);
+    std::vector<Placed> mine = messages_.exchange(to);
     std::sort(mine.begin(), mine.end(), [](const Placed& a, const Placed& b) { return a.gid < b.gid; });
     return mine;
   }
@@ -384,15 +384,9 @@ class DistributedWorld {
           sent[r].push_back(k);
         }
     }
-    const std::vector<Placed> came = messages_.all_to_all(to);
     // The shadows arrive rank by rank, each rank's in the order it sent them.
     std::vector<int> from;
-    {
-      std::vector<int> counts(ranks_), in(ranks_);
-      for (int r = 0; r < ranks_; ++r) counts[r] = int(to[r].size());
-      MPI_Alltoall(counts.data(), 1, MPI_INT, in.data(), 1, MPI_INT, comm_);
-      for (int r = 0; r < ranks_; ++r) from.insert(from.end(), std::size_t(in[r]), r);
-    }
+    const std::vector<Placed> came = messages_.exchange(to, &from);
     // Merge fixed, owned and shadows by id.
     struct Entry {
       std::uint64_t gid;

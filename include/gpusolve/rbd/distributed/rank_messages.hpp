@@ -1,9 +1,12 @@
 // RankMessages: records of a trivially copyable type between the ranks of a
-// communicator, as bytes (MPI's collectives, with the counts exchanged first).
+// communicator, as bytes: sparse exchanges between the ranks that have
+// something to send, and MPI's gathers.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <mpi.h>
@@ -12,26 +15,67 @@ namespace gpusolve::rbd {
 
 class RankMessages {
  public:
-  explicit RankMessages(MPI_Comm comm) : comm_(comm) {
-    MPI_Comm_rank(comm, &rank_);
-    MPI_Comm_size(comm, &ranks_);
+  // Its messages go through a duplicate of `comm` (a collective), apart from any other traffic.
+  explicit RankMessages(MPI_Comm comm) {
+    MPI_Comm_dup(comm, &comm_);
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &ranks_);
+  }
+  RankMessages(const RankMessages&) = delete;
+  RankMessages& operator=(const RankMessages&) = delete;
+  ~RankMessages() {
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized) MPI_Comm_free(&comm_);
   }
 
-  // Sends to[r] to rank r; returns what came, rank by rank.
+  // Sends to[r] to rank r; returns what came, rank by rank, each rank's
+  // records in the order it sent them (`from`, if given: each record's rank).
+  // A collective, but only ranks with records for each other exchange
+  // messages: Hoefler, Siebert and Lumsdaine's non-blocking consensus (2010,
+  // "Scalable communication protocols for dynamic sparse data exchange"):
+  // synchronous sends, received as they are found, until a non-blocking
+  // barrier entered once a rank's own sends were all received completes.
   template <class E>
-  std::vector<E> all_to_all(const std::vector<std::vector<E>>& to) const {
+  std::vector<E> exchange(const std::vector<std::vector<E>>& to, std::vector<int>* from = nullptr) {
     static_assert(std::is_trivially_copyable_v<E>);
-    std::vector<int> out_counts(ranks_), out_offsets(ranks_), in_counts(ranks_), in_offsets(ranks_);
-    std::vector<E> out;
-    for (int r = 0; r < ranks_; ++r) {
-      out_offsets[r] = int(out.size() * sizeof(E));
-      out_counts[r] = int(to[r].size() * sizeof(E));
-      out.insert(out.end(), to[r].begin(), to[r].end());
+    // Two rounds in a row can overlap (a rank may send the next round's
+    // messages before another has seen this round's barrier end), never three.
+    const int tag = 1 + int(rounds_++ % 2);
+    std::vector<MPI_Request> sends;
+    for (int r = 0; r < ranks_; ++r)
+      if (!to[r].empty()) {
+        sends.emplace_back();
+        MPI_Issend(to[r].data(), int(to[r].size() * sizeof(E)), MPI_BYTE, r, tag, comm_, &sends.back());
+      }
+    std::vector<std::pair<int, std::vector<E>>> came;  // (rank, records)
+    MPI_Request barrier = MPI_REQUEST_NULL;
+    for (bool in_barrier = false, done = false; !done;) {
+      int found = 0;
+      MPI_Status status;
+      MPI_Iprobe(MPI_ANY_SOURCE, tag, comm_, &found, &status);
+      if (found) {
+        int bytes = 0;
+        MPI_Get_count(&status, MPI_BYTE, &bytes);
+        came.emplace_back(status.MPI_SOURCE, std::vector<E>(std::size_t(bytes) / sizeof(E)));
+        MPI_Recv(came.back().second.data(), bytes, MPI_BYTE, status.MPI_SOURCE, tag, comm_, MPI_STATUS_IGNORE);
+      }
+      int complete = 0;
+      if (in_barrier) {
+        MPI_Test(&barrier, &complete, MPI_STATUS_IGNORE);
+        done = complete != 0;
+      } else {
+        MPI_Testall(int(sends.size()), sends.data(), &complete, MPI_STATUSES_IGNORE);
+        if (complete) MPI_Ibarrier(comm_, &barrier), in_barrier = true;
+      }
     }
-    MPI_Alltoall(out_counts.data(), 1, MPI_INT, in_counts.data(), 1, MPI_INT, comm_);
-    std::vector<E> in(offsets(in_counts, in_offsets) / sizeof(E));
-    MPI_Alltoallv(out.data(), out_counts.data(), out_offsets.data(), MPI_BYTE, in.data(), in_counts.data(),
-                  in_offsets.data(), MPI_BYTE, comm_);
+    std::sort(came.begin(), came.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<E> in;
+    if (from != nullptr) from->clear();
+    for (const auto& [rank, records] : came) {
+      in.insert(in.end(), records.begin(), records.end());
+      if (from != nullptr) from->insert(from->end(), records.size(), rank);
+    }
     return in;
   }
 
@@ -68,8 +112,9 @@ class RankMessages {
     return std::size_t(total);
   }
 
-  MPI_Comm comm_;
+  MPI_Comm comm_ = MPI_COMM_NULL;
   int rank_ = 0, ranks_ = 1;
+  unsigned rounds_ = 0;  // exchanges so far (the same count on every rank)
 };
 
 }  // namespace gpusolve::rbd
