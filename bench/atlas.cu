@@ -5,7 +5,7 @@
 // Run: gpusolve_bench_atlas --scene pile|cubes|mixed|clumps|unions|column|pyramid|stack|field|slabs|hopper [--n 10000,100000] [--ratios 1,100,1000]
 //        [--methods gauss-seidel,jacobi,apgd,substepping,apgd-cg]
 //        [--budgets default,it10,it20,s4x5,tol0.02,stop0.001,check10,corr0.4,launched,unanchored] [--margins 0.1]
-//        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]
+//        [--warm 0.8,1] [--dts 0.0025] [--steps N] [--backend gpu|cpu] [--phases] [--trace N] [--csv FILE]
 //
 // pile:   the shared pile (bench/shared_pile.hpp, docs/piles.md), N spheres dropped into
 //         an open box; 1 200 steps for N <= 10 000, else 900 (docs/piles.md's counts).
@@ -38,6 +38,7 @@
 // --warm: SolverSettings::warm_start (default: the library's). --backend cpu
 // runs the same World on device::cpu (no GPU needed; host clock, OpenMP
 // threads): its accuracy columns are the method's, its times only the host's.
+// --trace N: a line every N steps (kinetic energy, iterations, residual, contacts).
 // --phases: World::set_phase_timing on; the medians of detection, solve and
 // integration over the last third go to the ms_detection.. columns (0 without).
 // --budgets: the defaults changed by one thing: itK, K iterations; tolX, the
@@ -103,6 +104,7 @@ struct Options {
   std::vector<double> dts{0.0025};
   long steps = 0;  // 0: the scene's
   bool phases = false;
+  long trace = 0;  // print a line every `trace` steps (0: none)
   std::string csv;
 };
 
@@ -113,6 +115,7 @@ struct Run {
   long steps = 0;
   bool gpu = true;
   bool phases = false;  // World::set_phase_timing: medians of each phase over the last third
+  long trace = 0;
 };
 
 struct Result {
@@ -276,6 +279,9 @@ Result run(const Run& r) {
     const rbd::StepStats<T> st = world.step();
     const double t = timer.stop_ms();
     out.capped += st.solver.status == rbd::SolverStatus::max_iterations;
+    if (r.trace > 0 && step % r.trace == 0)
+      std::printf("    step %ld: kinetic energy %.4g, %zu iterations, residual %.3g, %zu contacts\n", step,
+                  double(st.kinetic_energy), st.solver.iterations, double(st.solver.residual()), st.solver.contacts);
     out.diverged += st.solver.status == rbd::SolverStatus::diverged || !std::isfinite(st.max_penetration);
     if (step >= last_third) {
       ms.push_back(t);
@@ -366,7 +372,7 @@ int main(int argc, char** argv) {
   Options o;
   const char* usage =
       "--scene pile|cubes|mixed|clumps|unions|column|pyramid|stack|field|slabs|hopper [--n LIST] [--ratios LIST] [--methods LIST] [--budgets LIST] [--margins LIST] "
-      "[--warm LIST] [--dts LIST] [--steps N] [--backend gpu|cpu] [--phases] [--csv FILE]";
+      "[--warm LIST] [--dts LIST] [--steps N] [--backend gpu|cpu] [--phases] [--trace N] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--scene") o.scene = option_value(argc, argv, i);
@@ -380,6 +386,7 @@ int main(int argc, char** argv) {
     else if (a == "--dts") o.dts = parse_list<double>(option_value(argc, argv, i));
     else if (a == "--steps") o.steps = std::stol(option_value(argc, argv, i));
     else if (a == "--phases") o.phases = true;
+    else if (a == "--trace") o.trace = std::stol(option_value(argc, argv, i));
     else if (a == "--csv") o.csv = option_value(argc, argv, i);
     else usage_exit(argv[0], usage, a);
   }
@@ -421,7 +428,7 @@ int main(int argc, char** argv) {
             for (double warm : o.warm)
             for (const auto& method : o.methods)
               for (const auto& budget : o.budgets) {
-                Run r{o.scene, method, budget, n, ratio, margin, dt, warm, o.steps, o.backend == "gpu", o.phases};
+                Run r{o.scene, method, budget, n, ratio, margin, dt, warm, o.steps, o.backend == "gpu", o.phases, o.trace};
                 if (r.steps == 0)
                   r.steps = o.scene == "column"                        ? 2000
                             : o.scene == "hopper"                      ? 600
