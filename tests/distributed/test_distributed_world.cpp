@@ -326,6 +326,34 @@ TEST_CASE("distributed: a rank that throws does not hang the others", "[distribu
   }
 }
 
+// A rank whose World throws inside a step (here: out of memory, its contact
+// list asked for room for 10^13 per body) while the others go on into the
+// solve's exchanges: every rank throws an OutOfMemoryError of the same bytes,
+// the others' naming that rank, and none waits (before RankAlarm they waited
+// for it for ever).
+TEST_CASE("distributed: a rank that runs out of memory inside a step does not hang the others", "[distributed]") {
+  const int last = ranks_of_world() - 1;
+  SolverSettings<double> s;
+  if (rank_of_world() == last) s.contacts_per_body = std::size_t(1e13);
+  DistributedWorld<TestDevice, double> dist(MPI_COMM_WORLD, on_rank_zero(sphere_pile()), s);
+  std::uint64_t bytes = 0;
+  try {
+    dist.step();
+    FAIL("the step was taken");
+  } catch (const OutOfMemoryError& e) {
+    const std::string what = e.what();
+    INFO("rank " << rank_of_world() << ": " << what);
+    CHECK(what.find("contacts") != std::string::npos);
+    CHECK((rank_of_world() == last) == (what.find("rank " + std::to_string(last) + ":") == std::string::npos));
+    bytes = e.requested_bytes();
+  }
+  std::uint64_t low = bytes, high = bytes;
+  MPI_Allreduce(MPI_IN_PLACE, &low, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &high, 1, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD);
+  CHECK(low == high);
+  CHECK(low > std::uint64_t(1e13));
+}
+
 TEST_CASE("distributed: the ranks of a node take its GPUs in turn", "[distributed]") {
   const NodePlace p = node_place(MPI_COMM_WORLD);  // mpirun on one machine: one node
   CHECK(p.local_rank == rank_of_world());

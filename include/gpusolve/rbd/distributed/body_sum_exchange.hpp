@@ -20,6 +20,7 @@
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/execution/backend.hpp"
+#include "gpusolve/rbd/distributed/rank_alarm.hpp"
 #include "gpusolve/rbd/execution/body_exchange.hpp"
 
 namespace gpusolve::rbd {
@@ -77,7 +78,8 @@ class RankExchange : public BodyExchange<T> {
   virtual double take_seconds() = 0;
 };
 
-// Transport: `Transport(MPI_Comm)`, `int ranks()`,
+// Transport: `Transport(MPI_Comm, RankAlarm*)` (the alarm its waits heed,
+// where it waits on the host), `int ranks()`,
 // `send(out, out_counts, out_offsets, in, in_counts, in_offsets, stream)`
 // (values of type T in the backend's memory: out's block for each rank to it,
 // each rank's block into in) and `reduce(value, op, stream)` (*value over the
@@ -85,7 +87,7 @@ class RankExchange : public BodyExchange<T> {
 template <class Device, class T, class Transport>
 class BodySumExchange final : public RankExchange<T> {
  public:
-  explicit BodySumExchange(MPI_Comm comm) : transport_(comm) {
+  explicit BodySumExchange(MPI_Comm comm, RankAlarm* alarm = nullptr) : transport_(comm, alarm) {
     const int ranks = transport_.ranks();
     share({std::vector<std::vector<std::size_t>>(ranks), std::vector<std::vector<std::size_t>>(ranks)});
   }

@@ -26,6 +26,8 @@
 #endif
 #include "gpusolve/rbd/distributed/owned_bodies_check.hpp"
 #include "gpusolve/rbd/distributed/rank_agreement.hpp"
+#include "gpusolve/rbd/distributed/rank_alarm.hpp"
+#include "gpusolve/rbd/distributed/rank_communicator.hpp"
 #include "gpusolve/rbd/distributed/rank_device.hpp"
 #include "gpusolve/rbd/distributed/rank_grid.hpp"
 #include "gpusolve/rbd/distributed/rank_messages.hpp"
@@ -84,7 +86,8 @@ struct DistributedStats {
 // a BodySet with the same materials and compound types (a compound's parts are
 // found by index on whichever rank holds it); the counts are checked. A rank that throws (a body
 // that is not valid or not finite, named by its global id) makes every rank
-// throw the same error (RankAgreement).
+// throw the same error (RankAgreement); one that fails inside a step ends the
+// others' waits (RankAlarm), and they throw it too.
 template <class Device = device::cpu, class T = float, class Model = ConeFriction,
           class Method = AcceleratedJacobi<Gather>, ShapeMask Shapes = all_shapes>
 class DistributedWorld {
@@ -100,9 +103,13 @@ class DistributedWorld {
   DistributedWorld(MPI_Comm comm, const BodySet<T>& mine, const SolverSettings<T>& settings,
                    std::optional<std::pair<Vec, Vec>> box = std::nullopt,
                    RankTransport transport = RankTransport::mpi_host)
-      : comm_(comm), agree_(comm), messages_(comm), local_(mine), exchange_(make_exchange(comm, transport)) {
-    MPI_Comm_rank(comm, &rank_);
-    MPI_Comm_size(comm, &ranks_);
+      : comm_(comm),
+        alarm_(comm),
+        agree_(comm_, &alarm_),
+        messages_(comm, &alarm_),
+        local_(mine),
+        exchange_(make_exchange(comm, transport, &alarm_)) {
+    rank_ = comm_.rank(), ranks_ = comm_.ranks();
     local_.records().clear();
     require_same_everywhere(mine);
     std::vector<Placed> added = number(mine);
@@ -117,43 +124,27 @@ class DistributedWorld {
       if (p.body.status != fixed) owned.push_back(p);
     fixed_ = fixed_everywhere;
     owned_ = send_to_owners(owned);
-    world_.emplace(local_, settings);
-    // One rank shares nothing: its World solves as any World does (on the GPU,
-    // one persistent kernel); the method must still be one that runs distributed.
-    world_->set_exchange(exchange_.get());
-    if (ranks_ == 1) world_->set_exchange(nullptr);
-    rebuild({});
+    alarm_.guard([&] {
+      world_.emplace(local_, settings);
+      // One rank shares nothing: its World solves as any World does (on the GPU,
+      // one persistent kernel); the method must still be one that runs distributed.
+      world_->set_exchange(exchange_.get());
+      if (ranks_ == 1) world_->set_exchange(nullptr);
+      rebuild({});
+    });
   }
 
   // One step of the whole scene; every rank calls it. The ranks' Worlds are
   // rebuilt only where a body changes cells or ranks that need its shadow,
   // holds a state that is not finite (the rebuild's check names it on every
   // rank), or was modified: otherwise every shadow has moved exactly as its
-  // owner (the same velocity sums, the same integration).
+  // owner (the same velocity sums, the same integration). A rank that fails
+  // inside a step (out of memory, a failed launch) raises the alarm
+  // (RankAlarm): the other ranks' waits end and they throw the same error,
+  // named by that rank. A world that threw must not be stepped again (its
+  // ranks' states and messages are left where the failure found them).
   DistributedStats<T> step() {
-    const auto start = std::chrono::steady_clock::now();
-    DistributedStats<T> out;
-    out.rebuilt = bodies_change();
-    if (out.rebuilt) {
-      collect_owned();
-      std::vector<std::vector<Remembered>> to = remembered_by_rank();
-      owned_ = send_to_owners(owned_);
-      rebuild(messages_.exchange(to));
-    }
-    ++steps_;
-    const auto exchanged = std::chrono::steady_clock::now();
-    exchange_->take_seconds();
-    const StepStats<T> st = world_->step();
-    stepped_ = true;
-    out.seconds_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchanged).count();
-    out.seconds_exchange = exchange_->take_seconds();
-    const auto back = std::chrono::steady_clock::now();
-    own_ = check_.run(world_->bodies().view(), *grid_, rank_, reach_);
-    out.seconds_bodies = std::chrono::duration<double>(exchanged - start).count() +
-                         std::chrono::duration<double>(std::chrono::steady_clock::now() - back).count();
-    out.local = st;
-    figures(st, out);
-    return out;
+    return alarm_.guard([&] { return take_step(); });
   }
 
   // The moving bodies this rank owns after the last step, with their global ids.
@@ -197,6 +188,33 @@ class DistributedWorld {
   }
 
  private:
+  // step()'s work: the bodies that change ranks moved, the Worlds' step, the figures.
+  DistributedStats<T> take_step() {
+    const auto start = std::chrono::steady_clock::now();
+    DistributedStats<T> out;
+    out.rebuilt = bodies_change();
+    if (out.rebuilt) {
+      collect_owned();
+      std::vector<std::vector<Remembered>> to = remembered_by_rank();
+      owned_ = send_to_owners(owned_);
+      rebuild(messages_.exchange(to));
+    }
+    ++steps_;
+    const auto exchanged = std::chrono::steady_clock::now();
+    exchange_->take_seconds();
+    const StepStats<T> st = world_->step();
+    stepped_ = true;
+    out.seconds_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchanged).count();
+    out.seconds_exchange = exchange_->take_seconds();
+    const auto back = std::chrono::steady_clock::now();
+    own_ = check_.run(world_->bodies().view(), *grid_, rank_, reach_);
+    out.seconds_bodies = std::chrono::duration<double>(exchanged - start).count() +
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - back).count();
+    out.local = st;
+    figures(st, out);
+    return out;
+  }
+
   // A body and its global id, as ranks send them (plain bytes).
   struct Placed {
     std::uint64_t gid;
@@ -215,10 +233,10 @@ class DistributedWorld {
   };
 
   // The exchange over `transport` (the same on every rank: it is a collective).
-  static std::unique_ptr<RankExchange<T>> make_exchange(MPI_Comm comm, RankTransport transport) {
-    if (transport == RankTransport::mpi_host) return std::make_unique<MpiBodyExchange<Device, T>>(comm);
+  static std::unique_ptr<RankExchange<T>> make_exchange(MPI_Comm comm, RankTransport transport, RankAlarm* alarm) {
+    if (transport == RankTransport::mpi_host) return std::make_unique<MpiBodyExchange<Device, T>>(comm, alarm);
 #if GPUSOLVE_WITH_NCCL
-    if constexpr (std::is_same_v<Device, device::gpu>) return std::make_unique<NcclBodyExchange<T>>(comm);
+    if constexpr (std::is_same_v<Device, device::gpu>) return std::make_unique<NcclBodyExchange<T>>(comm, alarm);
 #endif
     throw UnsupportedError(std::is_same_v<Device, device::gpu>
                                ? "gpusolve: DistributedWorld: RankTransport::nccl needs a program built with NCCL "
@@ -451,19 +469,19 @@ class DistributedWorld {
   // the last step), or that was modified.
   bool bodies_change() {
     int change = modified_ || own_.to_move != 0 ? 1 : 0;
-    MPI_Allreduce(MPI_IN_PLACE, &change, 1, MPI_INT, MPI_LOR, comm_);
+    alarm_.allreduce(&change, 1, MPI_INT, MPI_LOR, comm_);
     return change != 0;
   }
 
   // The step's figures over the ranks: owned bodies only, each contact once.
-  void figures(const StepStats<T>& st, DistributedStats<T>& out) const {
+  void figures(const StepStats<T>& st, DistributedStats<T>& out) {
     double sums[6] = {own_.count, own_.kinetic_energy, own_.momentum[0], own_.momentum[1], own_.momentum[2],
                       double(shadows_)};  // bodies, energy, momentum, shadows
-    MPI_Allreduce(MPI_IN_PLACE, sums, 6, MPI_DOUBLE, MPI_SUM, comm_);
+    alarm_.allreduce(sums, 6, MPI_DOUBLE, MPI_SUM, comm_);
     std::uint64_t contacts = st.solver.contacts;
-    MPI_Allreduce(MPI_IN_PLACE, &contacts, 1, MPI_UINT64_T, MPI_SUM, comm_);
+    alarm_.allreduce(&contacts, 1, MPI_UINT64_T, MPI_SUM, comm_);
     T penetration = st.max_penetration;
-    MPI_Allreduce(MPI_IN_PLACE, &penetration, 1, detail::mpi_type<T>(), MPI_MAX, comm_);
+    alarm_.allreduce(&penetration, 1, detail::mpi_type<T>(), MPI_MAX, comm_);
     out.bodies = std::size_t(sums[0]);
     out.kinetic_energy = T(sums[1]);
     for (int a = 0; a < 3; ++a) out.momentum[a] = T(sums[2 + a]);
@@ -472,8 +490,9 @@ class DistributedWorld {
     out.max_penetration = penetration;
   }
 
-  MPI_Comm comm_;
+  RankCommunicator comm_;  // the world's own collectives
   int rank_ = 0, ranks_ = 1;
+  RankAlarm alarm_;  // a failure inside a step ends every rank's waits
   RankAgreement agree_;
   RankMessages messages_;
   BodySet<T> local_;                   // the World's bodies: fixed, owned and shadows, by id

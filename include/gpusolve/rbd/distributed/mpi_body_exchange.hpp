@@ -3,7 +3,8 @@
 // bodies live, copied to the host and sent to the ranks that share them
 // (MPI_Isend and MPI_Irecv, so a rank waits on its neighbours only, not on
 // every rank as an all-to-all does); reductions are MPI_Allreduce. Each call
-// waits for the backend's stream.
+// waits for the backend's stream, and its waits end where another rank raises
+// the alarm (RankAlarm). Its messages go through a duplicate of the communicator.
 #pragma once
 
 #include <cstddef>
@@ -13,6 +14,8 @@
 
 #include "gpusolve/core/launch.hpp"
 #include "gpusolve/rbd/distributed/body_sum_exchange.hpp"
+#include "gpusolve/rbd/distributed/rank_alarm.hpp"
+#include "gpusolve/rbd/distributed/rank_communicator.hpp"
 #include "gpusolve/rbd/execution/backend.hpp"
 
 namespace gpusolve::rbd {
@@ -38,7 +41,7 @@ inline MPI_Op mpi_op(ExchangeOp op) {
 template <class Device, class T>
 class MpiTransport {
  public:
-  explicit MpiTransport(MPI_Comm comm) : comm_(comm) { MPI_Comm_size(comm, &ranks_); }
+  MpiTransport(MPI_Comm comm, RankAlarm* alarm) : comm_(comm), alarm_(alarm), ranks_(comm_.ranks()) {}
 
   int ranks() const { return ranks_; }
 
@@ -57,13 +60,19 @@ class MpiTransport {
       if (out_counts[r] != 0)
         MPI_Isend(out_host_.data() + out_offsets[r], int(out_counts[r]), detail::mpi_type<T>(), r, 0, comm_,
                   &requests_.emplace_back());
-    MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+    if (alarm_ != nullptr)
+      alarm_->wait(requests_);
+    else
+      MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
     detail::copy_with_host<Device>(in, in_host_.data(), in_n, false, stream);
   }
 
   void reduce(T* value, ExchangeOp op, stream_t stream) {
     T x = detail::read_back<Device>(value, 0, stream);
-    MPI_Allreduce(MPI_IN_PLACE, &x, 1, detail::mpi_type<T>(), detail::mpi_op(op), comm_);
+    if (alarm_ != nullptr)
+      alarm_->allreduce(&x, 1, detail::mpi_type<T>(), detail::mpi_op(op), comm_);
+    else
+      MPI_Allreduce(MPI_IN_PLACE, &x, 1, detail::mpi_type<T>(), detail::mpi_op(op), comm_);
     detail::copy_with_host<Device>(value, &x, 1, false, stream);
   }
 
@@ -74,7 +83,8 @@ class MpiTransport {
     return n;
   }
 
-  MPI_Comm comm_;
+  RankCommunicator comm_;
+  RankAlarm* alarm_;
   int ranks_ = 1;
   std::vector<T> out_host_, in_host_;  // the values on the host, for MPI
   std::vector<MPI_Request> requests_;

@@ -51,11 +51,13 @@ inline ncclRedOp_t nccl_op(ExchangeOp op) {
 // BodySumExchange's transport between GPUs. Made collectively over `comm`
 // (every rank's current GPU its own: use_rank_gpu on a node of a GPU per
 // rank); where two ranks share a GPU (UnsupportedError) or NCCL fails
-// (RankFailedError), every rank throws.
+// (RankFailedError), every rank throws. Its exchanges are queued on the
+// stream, where no RankAlarm reaches them: a rank that fails inside a step
+// leaves the others waiting in NCCL (ncclCommAbort is not wired).
 template <class T>
 class NcclTransport {
  public:
-  explicit NcclTransport(MPI_Comm comm) {
+  NcclTransport(MPI_Comm comm, RankAlarm*) {
     int rank = 0;
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &ranks_);

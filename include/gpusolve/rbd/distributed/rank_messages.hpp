@@ -11,23 +11,17 @@
 
 #include <mpi.h>
 
+#include "gpusolve/rbd/distributed/rank_alarm.hpp"
+#include "gpusolve/rbd/distributed/rank_communicator.hpp"
+
 namespace gpusolve::rbd {
 
 class RankMessages {
  public:
-  // Its messages go through a duplicate of `comm` (a collective), apart from any other traffic.
-  explicit RankMessages(MPI_Comm comm) {
-    MPI_Comm_dup(comm, &comm_);
-    MPI_Comm_rank(comm_, &rank_);
-    MPI_Comm_size(comm_, &ranks_);
-  }
-  RankMessages(const RankMessages&) = delete;
-  RankMessages& operator=(const RankMessages&) = delete;
-  ~RankMessages() {
-    int finalized = 0;
-    MPI_Finalized(&finalized);
-    if (!finalized) MPI_Comm_free(&comm_);
-  }
+  // Its messages go through a duplicate of `comm` (a collective), apart from
+  // any other traffic; exchange() heeds `alarm` while it waits (RankAlarm).
+  explicit RankMessages(MPI_Comm comm, RankAlarm* alarm = nullptr)
+      : comm_(comm), alarm_(alarm), rank_(comm_.rank()), ranks_(comm_.ranks()) {}
 
   // Sends to[r] to rank r; returns what came, rank by rank, each rank's
   // records in the order it sent them (`from`, if given: each record's rank).
@@ -51,6 +45,7 @@ class RankMessages {
     std::vector<std::pair<int, std::vector<E>>> came;  // (rank, records)
     MPI_Request barrier = MPI_REQUEST_NULL;
     for (bool in_barrier = false, done = false; !done;) {
+      if (alarm_ != nullptr) alarm_->check();
       int found = 0;
       MPI_Status status;
       MPI_Iprobe(MPI_ANY_SOURCE, tag, comm_, &found, &status);
@@ -112,7 +107,8 @@ class RankMessages {
     return std::size_t(total);
   }
 
-  MPI_Comm comm_ = MPI_COMM_NULL;
+  RankCommunicator comm_;
+  RankAlarm* alarm_;
   int rank_ = 0, ranks_ = 1;
   unsigned rounds_ = 0;  // exchanges so far (the same count on every rank)
 };
