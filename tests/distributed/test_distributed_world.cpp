@@ -354,6 +354,26 @@ TEST_CASE("distributed: a rank that runs out of memory inside a step does not ha
   CHECK(low > std::uint64_t(1e13));
 }
 
+// A rank whose World cannot be made (here its settings' dt is negative)
+// while the others go on into the first rebuild: every rank throws, the others
+// a RankFailedError naming that rank and the field.
+TEST_CASE("distributed: a rank whose World cannot be made does not hang the others", "[distributed]") {
+  const int last = ranks_of_world() - 1;
+  SolverSettings<double> s;
+  if (rank_of_world() == last) s.dt = -1;
+  try {
+    DistributedWorld<TestDevice, double> dist(MPI_COMM_WORLD, on_rank_zero(sphere_pile()), s);
+    FAIL("the world was made");
+  } catch (const RankFailedError& e) {
+    CHECK(rank_of_world() != last);
+    CHECK(e.rank() == last);
+    CHECK(std::string(e.what()).find("dt") != std::string::npos);
+  } catch (const InvalidArgumentError& e) {
+    CHECK(rank_of_world() == last);
+    CHECK(std::string(e.what()).find("dt") != std::string::npos);
+  }
+}
+
 TEST_CASE("distributed: the ranks of a node take its GPUs in turn", "[distributed]") {
   const NodePlace p = node_place(MPI_COMM_WORLD);  // mpirun on one machine: one node
   CHECK(p.local_rank == rank_of_world());
