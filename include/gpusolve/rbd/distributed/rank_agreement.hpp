@@ -16,8 +16,8 @@ namespace gpusolve::rbd {
 
 // run(f) on every rank of the communicator (a collective): when f throws on
 // any rank, every rank throws the error of the lowest rank that failed
-// (RankFailure::throw_from: a body's or an allocation's error as its own
-// type, else a RankFailedError naming that rank). With an `alarm`, its waits
+// (RankFailure::throw_from: the library's errors as their own type, else a
+// RankFailedError naming that rank). With an `alarm`, its waits
 // also end when another rank raises one (RankAlarm).
 class RankAgreement {
  public:

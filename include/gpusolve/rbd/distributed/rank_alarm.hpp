@@ -5,8 +5,8 @@
 // sent without waiting. The distributed world's waits (for messages, for
 // reductions) look for it while they wait and throw that failure
 // (RankFailure::throw_from) instead of waiting for a rank that will not come.
-// After a failure the world's communicators are abandoned: what was pending
-// on them stays pending.
+// After a failure the communicators are abandoned, never freed
+// (RankCommunicator::abandon_all): what was pending on them stays pending.
 #pragma once
 
 #include <cstring>
@@ -22,10 +22,7 @@ namespace gpusolve::rbd {
 
 class RankAlarm {
  public:
-  // Made collectively. Each alarm takes a tag that no earlier one on any of
-  // its ranks took, so a notice left over from an earlier alarm (MPI may give
-  // a freed communicator's context to a new one) is never taken for its own.
-  explicit RankAlarm(MPI_Comm comm) : comm_(comm), tag_(next_tag(comm_)) {}
+  explicit RankAlarm(MPI_Comm comm) : comm_(comm) {}
   RankAlarm(const RankAlarm&) = delete;
   RankAlarm& operator=(const RankAlarm&) = delete;
   ~RankAlarm() {
@@ -62,6 +59,7 @@ class RankAlarm {
     std::vector<char> notice(std::size_t(size > 0 ? size : 0));
     MPI_Recv(notice.data(), size, MPI_BYTE, status.MPI_SOURCE, tag_, comm_, MPI_STATUS_IGNORE);
     shared_ = true;
+    RankCommunicator::abandon_all();
     RankFailure::unpack(notice).throw_from(status.MPI_SOURCE);
   }
 
@@ -108,17 +106,12 @@ class RankAlarm {
   }
 
  private:
-  static int next_tag(MPI_Comm comm) {
-    static int last = 0;  // the last tag this process's alarms took
-    int tag = last;
-    MPI_Allreduce(MPI_IN_PLACE, &tag, 1, MPI_INT, MPI_MAX, comm);
-    last = tag % 32000 + 1;  // MPI promises tags up to 32 767
-    return last;
-  }
+  static constexpr int tag_ = 1;
 
   // Tells every other rank of `failure`, without waiting (once: the first failure).
   void raise(const RankFailure& failure) {
     if (!notice_.empty()) return;
+    RankCommunicator::abandon_all();
     notice_ = failure.pack();
     for (int r = 0; r < comm_.ranks(); ++r)
       if (r != comm_.rank()) MPI_Isend(notice_.data(), int(notice_.size()), MPI_BYTE, r, tag_, comm_, &sent_.emplace_back());
@@ -140,7 +133,6 @@ class RankAlarm {
   }
 
   RankCommunicator comm_;  // the alarm's messages
-  int tag_;
   bool shared_ = false;  // the failure being thrown is every rank's (heard, or agreed)
   std::vector<char> notice_;  // this rank's failure, while its sends are pending
   std::vector<MPI_Request> sent_;

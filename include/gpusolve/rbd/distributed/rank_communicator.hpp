@@ -18,14 +18,24 @@ class RankCommunicator {
   ~RankCommunicator() {
     int finalized = 0;
     MPI_Finalized(&finalized);
-    if (!finalized) MPI_Comm_free(&comm_);
+    if (!finalized && !abandoned()) MPI_Comm_free(&comm_);
   }
+
+  // After a failure that left messages pending (RankAlarm), this process
+  // frees no communicator any more: MPI may give a freed one's context to a
+  // new communicator, which would then receive what was left pending.
+  static void abandon_all() { abandoned() = true; }
 
   operator MPI_Comm() const { return comm_; }
   int rank() const { return rank_; }
   int ranks() const { return ranks_; }
 
  private:
+  static bool& abandoned() {
+    static bool all = false;
+    return all;
+  }
+
   MPI_Comm comm_ = MPI_COMM_NULL;
   int rank_ = 0, ranks_ = 1;
 };

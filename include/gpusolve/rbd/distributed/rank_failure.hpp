@@ -14,7 +14,7 @@
 
 namespace gpusolve::rbd {
 
-// An error that another rank threw, not a body's or an allocation's (those
+// An error that another rank threw, of none of the library's own types (those
 // are thrown again as their own type): its rank and message.
 class RankFailedError : public Error {
  public:
@@ -27,7 +27,7 @@ class RankFailedError : public Error {
 };
 
 struct RankFailure {
-  enum class Kind : std::uint64_t { none, non_finite, invalid_body, out_of_memory, other };
+  enum class Kind : std::uint64_t { none, non_finite, invalid_body, out_of_memory, unsupported, invalid_argument, other };
   Kind kind = Kind::none;
   std::uint64_t body = 0, step = 0, bytes = 0;
   std::string field, why;
@@ -42,6 +42,10 @@ struct RankFailure {
       return {Kind::invalid_body, e.body(), 0, 0, e.field(), reason(e)};
     } catch (const OutOfMemoryError& e) {
       return {Kind::out_of_memory, 0, 0, e.requested_bytes(), "", e.what()};
+    } catch (const UnsupportedError& e) {
+      return {Kind::unsupported, 0, 0, 0, "", e.what()};
+    } catch (const InvalidArgumentError& e) {
+      return {Kind::invalid_argument, 0, 0, 0, "", e.what()};
     } catch (const std::exception& e) {
       return {Kind::other, 0, 0, 0, "", e.what()};
     } catch (...) {
@@ -50,12 +54,16 @@ struct RankFailure {
   }
 
   // Throws it as rank `rank`'s failure: a NonFiniteStateError or
-  // InvalidBodyError with the same body, field and step, an OutOfMemoryError
-  // of the same bytes whose message names the rank, else a RankFailedError.
+  // InvalidBodyError with the same body, field and step; an OutOfMemoryError
+  // (of the same bytes), UnsupportedError or InvalidArgumentError whose
+  // message names the rank; else a RankFailedError.
   [[noreturn]] void throw_from(int rank) const {
+    const std::string named = "gpusolve: rank " + std::to_string(rank) + ": " + why;
     if (kind == Kind::non_finite) throw NonFiniteStateError(body, field, step);
     if (kind == Kind::invalid_body) throw InvalidBodyError(body, field, why);
-    if (kind == Kind::out_of_memory) throw OutOfMemoryError(bytes, "gpusolve: rank " + std::to_string(rank) + ": " + why);
+    if (kind == Kind::out_of_memory) throw OutOfMemoryError(bytes, named);
+    if (kind == Kind::unsupported) throw UnsupportedError(named);
+    if (kind == Kind::invalid_argument) throw InvalidArgumentError(named);
     throw RankFailedError(rank, why);
   }
 
