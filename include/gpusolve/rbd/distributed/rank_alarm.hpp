@@ -37,6 +37,7 @@ class RankAlarm {
   // is told before it propagates.
   template <class F>
   decltype(auto) guard(F&& f) {
+    shared_ = false;
     try {
       return f();
     } catch (...) {
@@ -133,7 +134,7 @@ class RankAlarm {
   }
 
   RankCommunicator comm_;  // the alarm's messages
-  bool shared_ = false;  // the failure being thrown is every rank's (heard, or agreed)
+  bool shared_ = false;  // guard()'s failure is every rank's already (heard, or agreed)
   std::vector<char> notice_;  // this rank's failure, while its sends are pending
   std::vector<MPI_Request> sent_;
 };
