@@ -327,6 +327,14 @@ TEST_CASE("distributed: a rank that throws does not hang the others", "[distribu
   }
 }
 
+// A failure's message on every rank: it says `about`, and names the failing
+// rank on every other rank (not on the failing one, which throws its own).
+static void check_failure_message(const std::string& what, const std::string& about, int failing) {
+  INFO("rank " << rank_of_world() << ": " << what);
+  CHECK(what.find(about) != std::string::npos);
+  CHECK((rank_of_world() == failing) == (what.find("rank " + std::to_string(failing) + ":") == std::string::npos));
+}
+
 // A rank whose World throws inside a step (here: out of memory, its contact
 // list asked for room for 10^13 per body) while the others go on into the
 // solve's exchanges: every rank throws an OutOfMemoryError of the same bytes,
@@ -342,10 +350,7 @@ TEST_CASE("distributed: a rank that runs out of memory inside a step does not ha
     dist.step();
     FAIL("the step was taken");
   } catch (const OutOfMemoryError& e) {
-    const std::string what = e.what();
-    INFO("rank " << rank_of_world() << ": " << what);
-    CHECK(what.find("contacts") != std::string::npos);
-    CHECK((rank_of_world() == last) == (what.find("rank " + std::to_string(last) + ":") == std::string::npos));
+    check_failure_message(e.what(), "contacts", last);
     bytes = e.requested_bytes();
   }
   std::uint64_t low = bytes, high = bytes;
@@ -366,10 +371,7 @@ TEST_CASE("distributed: a rank whose World cannot be made does not hang the othe
     DistributedWorld<TestDevice, double> dist(MPI_COMM_WORLD, on_rank_zero(sphere_pile()), s);
     FAIL("the world was made");
   } catch (const InvalidArgumentError& e) {
-    const std::string what = e.what();
-    INFO("rank " << rank_of_world() << ": " << what);
-    CHECK(what.find("dt") != std::string::npos);
-    CHECK((rank_of_world() == last) == (what.find("rank " + std::to_string(last) + ":") == std::string::npos));
+    check_failure_message(e.what(), "dt", last);
   }
 }
 
