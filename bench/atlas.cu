@@ -45,7 +45,8 @@
 // tolerance X; stopX, the stopping rule X (tolerance and a check every 10);
 // sSxK, S substeps of K; checkK, a check every K; launched, the solve as
 // launches instead of the persistent kernel; unanchored, no friction anchors;
-// corrX, the share X of a penetration removed per step (correction).
+// omegaX, the relaxation X; corrX, the share X of a penetration removed per
+// step (correction). Several joined by '+' apply in turn (tol0.005+omega0.5).
 // Measured, over the last third of the steps: time per whole step (detection,
 // solve, integration and World's statistics, what a user's loop pays) with CUDA
 // events around World::step, mean and median; mean iterations; the median final
@@ -156,39 +157,51 @@ double point_speed(const rbd::Body<T>& b) {
   return norm(b.v) + norm(b.w) * double(rbd::shape_bound<T>(b.shape, p[0], p[1], p[2]));
 }
 
+// One change of a budget (see --budgets) applied to s.
+void apply_budget(const std::string& b, SolverSettings<T>& s) {
+  if (b.rfind("it", 0) == 0) {
+    s.max_iterations = std::stoul(b.substr(2));
+    s.check_every = s.max_iterations;
+    s.tolerance = std::numeric_limits<T>::min();
+  } else if (b.rfind("tol", 0) == 0) {
+    s.tolerance = T(std::stod(b.substr(3)));
+    s.max_iterations = 2000;
+    s.check_every = 10;
+  } else if (b.rfind("s", 0) == 0 && b.find('x') != std::string::npos) {
+    s.substeps = std::stoul(b.substr(1));
+    s.max_iterations = s.substeps * std::stoul(b.substr(b.find('x') + 1));
+    s.check_every = s.max_iterations;
+    s.tolerance = std::numeric_limits<T>::min();
+  } else if (b.rfind("check", 0) == 0) {
+    s.check_every = std::stoul(b.substr(5));
+  } else if (b.rfind("stop", 0) == 0) {
+    s.tolerance = T(std::stod(b.substr(4)));  // a stopping rule within the defaults' cap
+    s.check_every = 10;
+  } else if (b.rfind("omega", 0) == 0) {
+    s.omega = T(std::stod(b.substr(5)));  // the relaxation (0: the method's default)
+  } else if (b.rfind("corr", 0) == 0) {
+    s.correction = T(std::stod(b.substr(4)));  // the defaults with another share of a penetration removed per step
+  } else if (b == "launched") {
+    s.persistent_max_contacts = 0;  // the defaults, as launches instead of the persistent kernel
+  } else if (b == "unanchored") {
+    s.friction_anchors = false;  // the defaults without friction anchors
+  } else if (b != "default") {
+    throw InvalidArgumentError("atlas: unknown budget '" + b +
+                               "' (default, itK, sSxK, tolX, stopX, checkK, omegaX, corrX, launched or unanchored, joined by +)");
+  }
+}
+
 SolverSettings<T> settings_for(const Run& r) {
   SolverSettings<T> s;
   s.dt = T(r.dt);
   s.friction = T(r.scene == "hopper" ? hopper_friction : 0.5);
   if (r.margin >= 0) s.margin = T(r.margin);
   s.warm_start = T(r.warm);
-  if (r.budget.rfind("it", 0) == 0) {
-    s.max_iterations = std::stoul(r.budget.substr(2));
-    s.check_every = s.max_iterations;
-    s.tolerance = std::numeric_limits<T>::min();
-  } else if (r.budget.rfind("tol", 0) == 0) {
-    s.tolerance = T(std::stod(r.budget.substr(3)));
-    s.max_iterations = 2000;
-    s.check_every = 10;
-  } else if (r.budget.rfind("s", 0) == 0 && r.budget.find('x') != std::string::npos) {
-    s.substeps = std::stoul(r.budget.substr(1));
-    s.max_iterations = s.substeps * std::stoul(r.budget.substr(r.budget.find('x') + 1));
-    s.check_every = s.max_iterations;
-    s.tolerance = std::numeric_limits<T>::min();
-  } else if (r.budget.rfind("check", 0) == 0) {
-    s.check_every = std::stoul(r.budget.substr(5));
-  } else if (r.budget.rfind("stop", 0) == 0) {
-    s.tolerance = T(std::stod(r.budget.substr(4)));  // a stopping rule within the defaults' cap
-    s.check_every = 10;
-  } else if (r.budget.rfind("corr", 0) == 0) {
-    s.correction = T(std::stod(r.budget.substr(4)));  // the defaults with another share of a penetration removed per step
-  } else if (r.budget == "launched") {
-    s.persistent_max_contacts = 0;  // the defaults, as launches instead of the persistent kernel
-  } else if (r.budget == "unanchored") {
-    s.friction_anchors = false;  // the defaults without friction anchors
-  } else if (r.budget != "default") {
-    throw InvalidArgumentError("atlas: unknown budget '" + r.budget +
-                               "' (default, itK, sSxK, tolX, stopX, checkK, corrX, launched or unanchored)");
+  // A budget is one change of the defaults or several joined by '+' (tol0.005+omega0.5).
+  for (std::size_t from = 0; from <= r.budget.size();) {
+    const std::size_t to = std::min(r.budget.find('+', from), r.budget.size());
+    apply_budget(r.budget.substr(from, to - from), s);
+    from = to + 1;
   }
   return s;
 }
