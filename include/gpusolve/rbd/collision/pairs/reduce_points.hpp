@@ -1,6 +1,8 @@
 // Contact reduction: at most four of a face contact's candidate points.
 #pragma once
 
+#include <limits>
+
 #include "gpusolve/core/config.hpp"
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/collision/manifold.hpp"
@@ -9,22 +11,28 @@ namespace gpusolve::rbd {
 
 namespace detail {
 
-// The candidate with the largest score(k) above floor; near ties (1e-4
-// relative) go to the deeper point, so exact ties resolve the same way every step.
+// Among the candidates within `tie` of the best by key(k) (smaller is better),
+// the one of the smallest feature id. The depths of a face lying flat, and the
+// spans of a symmetric polygon, differ by rounding and by tilts that change
+// from step to step; the ids do not, so the same points are kept and the warm
+// start finds them. -1 if no key is below `none`.
+template <class T, class Key>
+GPUSOLVE_HD int first_of_best(const ManifoldPoint<T>* c, int n, T none, T tie, const Key& key) {
+  T low = none;
+  for (int k = 0; k < n; ++k) low = key(k) < low ? key(k) : low;
+  int best = -1;
+  for (int k = 0; k < n; ++k)
+    if (key(k) < none && key(k) <= low + tie && (best < 0 || c[k].feature < c[best].feature)) best = k;
+  return best;
+}
+
+// The candidate with the largest score(k) above floor, near ties (1e-4
+// relative) going to the smaller feature id.
 template <class T, class Score>
 GPUSOLVE_HD int best_point(const ManifoldPoint<T>* c, int n, T floor, const Score& score) {
-  int best = -1;
-  T bs = floor;
-  for (int k = 0; k < n; ++k) {
-    const T s = score(k);
-    if (!(s > floor)) continue;
-    const T tol = T(1e-4) * (bs < T(0) ? -bs : bs);
-    if (best < 0 || s > bs + tol || (s >= bs - tol && c[k].gap < c[best].gap)) {
-      best = k;
-      bs = s;
-    }
-  }
-  return best;
+  T top = floor;
+  for (int k = 0; k < n; ++k) top = score(k) > top ? score(k) : top;
+  return first_of_best(c, n, -floor, T(1e-4) * (top < T(0) ? -top : top), [&](int k) { return -score(k); });
 }
 
 }  // namespace detail
@@ -40,9 +48,15 @@ GPUSOLVE_HD Manifold<T> reduce_to_four(const ManifoldPoint<T>* c, int n, const m
     for (int k = 0; k < n; ++k) m.add(c[k].p, c[k].gap, c[k].feature);
     return m;
   }
-  int i0 = 0;
-  for (int k = 1; k < n; ++k)
-    if (c[k].gap < c[i0].gap) i0 = k;
+  // The deepest, near ties (a ten-thousandth of the candidates' span) going to
+  // the smaller feature id.
+  T span = 0;
+  for (int k = 1; k < n; ++k) {
+    const T d = math::norm(math::Vector3<T>(c[k].p - c[0].p));
+    span = d > span ? d : span;
+  }
+  const int i0 = detail::first_of_best(c, n, std::numeric_limits<T>::max(), T(1e-4) * span,
+                                       [&](int k) { return c[k].gap; });
   m.add(c[i0].p, c[i0].gap, c[i0].feature);
   const auto across = [&](int k) -> T {  // squared distance from c[i0] in the contact plane
     const math::Vector3<T> d = c[k].p - c[i0].p;
