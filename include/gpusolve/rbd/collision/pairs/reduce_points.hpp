@@ -11,18 +11,20 @@ namespace gpusolve::rbd {
 
 namespace detail {
 
-// Among the candidates within `tie` of the best by key(k) (smaller is better),
+inline constexpr int max_candidates = 8;  // a quad clipped by four sides
+
+// Among the candidates within `tie` of the best by key[k] (smaller is better),
 // the one of the smallest feature id. The depths of a face lying flat, and the
 // spans of a symmetric polygon, differ by rounding and by tilts that change
 // from step to step; the ids do not, so the same points are kept and the warm
 // start finds them. -1 if no key is below `none`.
-template <class T, class Key>
-GPUSOLVE_HD int first_of_best(const ManifoldPoint<T>* c, int n, T none, T tie, const Key& key) {
+template <class T>
+GPUSOLVE_HD int first_of_best(const ManifoldPoint<T>* c, int n, T none, T tie, const T* key) {
   T low = none;
-  for (int k = 0; k < n; ++k) low = key(k) < low ? key(k) : low;
+  for (int k = 0; k < n; ++k) low = key[k] < low ? key[k] : low;
   int best = -1;
   for (int k = 0; k < n; ++k)
-    if (key(k) < none && key(k) <= low + tie && (best < 0 || c[k].feature < c[best].feature)) best = k;
+    if (key[k] < none && key[k] <= low + tie && (best < 0 || c[k].feature < c[best].feature)) best = k;
   return best;
 }
 
@@ -30,9 +32,12 @@ GPUSOLVE_HD int first_of_best(const ManifoldPoint<T>* c, int n, T none, T tie, c
 // relative) going to the smaller feature id.
 template <class T, class Score>
 GPUSOLVE_HD int best_point(const ManifoldPoint<T>* c, int n, T floor, const Score& score) {
-  T top = floor;
-  for (int k = 0; k < n; ++k) top = score(k) > top ? score(k) : top;
-  return first_of_best(c, n, -floor, T(1e-4) * (top < T(0) ? -top : top), [&](int k) { return -score(k); });
+  T key[max_candidates], top = floor;
+  for (int k = 0; k < n; ++k) {
+    key[k] = -score(k);
+    top = -key[k] > top ? -key[k] : top;
+  }
+  return first_of_best(c, n, -floor, T(1e-4) * (top < T(0) ? -top : top), key);
 }
 
 }  // namespace detail
@@ -50,13 +55,13 @@ GPUSOLVE_HD Manifold<T> reduce_to_four(const ManifoldPoint<T>* c, int n, const m
   }
   // The deepest, near ties (a ten-thousandth of the candidates' span) going to
   // the smaller feature id.
-  T span = 0;
-  for (int k = 1; k < n; ++k) {
-    const T d = math::norm(math::Vector3<T>(c[k].p - c[0].p));
-    span = d > span ? d : span;
+  T span2 = 0, gap[detail::max_candidates];
+  for (int k = 0; k < n; ++k) {
+    const T d2 = math::sqr_norm(math::Vector3<T>(c[k].p - c[0].p));
+    span2 = d2 > span2 ? d2 : span2;
+    gap[k] = c[k].gap;
   }
-  const int i0 = detail::first_of_best(c, n, std::numeric_limits<T>::max(), T(1e-4) * span,
-                                       [&](int k) { return c[k].gap; });
+  const int i0 = detail::first_of_best(c, n, std::numeric_limits<T>::max(), T(1e-4) * std::sqrt(span2), gap);
   m.add(c[i0].p, c[i0].gap, c[i0].feature);
   const auto across = [&](int k) -> T {  // squared distance from c[i0] in the contact plane
     const math::Vector3<T> d = c[k].p - c[i0].p;
