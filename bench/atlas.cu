@@ -60,7 +60,9 @@
 // `state_penetration_resting`, the same over pairs whose every point moves
 // slower than 1 m/s (a pile's load without the bodies landing or tumbling on
 // it). Over the whole run: steps at the iteration cap and diverged steps, and
-// `capped_last_third`, the steps at the cap over the last third. At the
+// `capped_last_third`, the steps at the cap over the last third; `warm_kept`,
+// the share of the last 200 steps' contacts whose pair and feature id the step
+// before had (what the warm start finds). At the
 // end: `drift`, the largest distance a moving body's centre moved from where
 // it started, over its feature size, and `creep`, the same from where it was
 // after the first quarter of the steps: a tower (pyramid, stack, field, slabs)
@@ -71,10 +73,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../examples/scene_hopper.hpp"
@@ -138,12 +142,35 @@ struct Result {
   double state_penetration_every_step = 0;
   std::size_t flagged = 0;
   double ms_detection = 0, ms_solve = 0, ms_integration = 0;  // medians; 0 without --phases
+  // Over the last 200 steps: the share of contacts whose pair and feature id
+  // the step before had too, so the warm start found them (a resting scene's
+  // ids change only where detection flips between features).
+  double warm_kept = 0;
   bool fell = false;  // a column's top sphere left its place by a radius; a tower's box moved 1% of its size
 };
 
 // Scenes that must stand still: their verdict is whether a box moved.
 bool tower(const std::string& scene) {
   return scene == "pyramid" || scene == "stack" || scene == "field" || scene == "slabs";
+}
+
+// The (pair key, feature id) of each contact a step ended with, sorted.
+std::vector<std::pair<std::uint64_t, std::uint32_t>> contact_ids(const rbd::RememberedContacts<T>& kept) {
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> ids(kept.keys.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = {kept.keys[i], kept.features[i]};
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+// How many of `now` are in `before` (both sorted).
+std::size_t kept_ids(const std::vector<std::pair<std::uint64_t, std::uint32_t>>& before,
+                     const std::vector<std::pair<std::uint64_t, std::uint32_t>>& now) {
+  std::size_t kept = 0;
+  for (auto b = before.begin(), n = now.begin(); b != before.end() && n != now.end();)
+    if (*b < *n) ++b;
+    else if (*n < *b) ++n;
+    else ++kept, ++b, ++n;
+  return kept;
 }
 
 constexpr double hopper_friction = 0.1;  // the scene's (examples/scene_hopper.hpp)
@@ -281,6 +308,8 @@ Result run(const Run& r) {
   Result out;
   double iterations = 0;
   const long last_third = r.steps - r.steps / 3;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> ids;  // the step before's contacts
+  std::size_t kept = 0, compared = 0;
   for (long step = 0; step < r.steps; ++step) {
     const bool measured = step >= r.steps - 200;
     double at_start = 0;  // the deepest overlap from the states the step starts from
@@ -311,6 +340,9 @@ Result run(const Run& r) {
       out.state_penetration_every_step = std::max(out.state_penetration_every_step, at_start);
       const double larger = std::max(at_start, found), apart = std::fabs(at_start - found);
       out.flagged += apart > 0.1 * larger && apart > 1e-4;
+      auto now = contact_ids(world.remembered_contacts());
+      if (step > r.steps - 200) kept += kept_ids(ids, now), compared += now.size();
+      ids = std::move(now);
     }
     if (measured && (r.steps - 1 - step) % 10 == 0) {
       world.syncHost();
@@ -333,6 +365,7 @@ Result run(const Run& r) {
       out.colours = st.solver.colours;
     }
   }
+  out.warm_kept = compared == 0 ? 1 : double(kept) / double(compared);
   world.syncHost();
   for (std::size_t i = 0; i < set.size(); ++i)
     if (set[i].status == rbd::active) {
@@ -425,7 +458,7 @@ int main(int argc, char** argv) {
         "scene,n,mass_ratio,method,budget,margin,warm_start,dt,steps,ms_per_step_mean,ms_per_step_median,contacts,colours,"
         "max_penetration,residual_median,iterations_mean,capped_steps,diverged_steps,kinetic_energy,height,drift,verdict,"
         "state_penetration,flagged_steps,ms_detection,ms_solve,ms_integration,gpu,creep,state_penetration_resting,"
-        "state_penetration_every_step,capped_last_third");
+        "state_penetration_every_step,capped_last_third,warm_kept");
     const std::vector<double> ratios = o.scene == "column" ? o.ratios : std::vector<double>{1};
     const bool is_tower = tower(o.scene);
     const std::size_t scene_n = o.scene == "column"   ? 10
@@ -458,22 +491,23 @@ int main(int argc, char** argv) {
                 std::printf("    %.3f ms/step (median %.3f), penetration %.4f%% (states %.4f%%, every step %.4f%%, resting pairs %.4f%%, "
                             "%zu flagged), "
                             "residual %.3g, %.1f iterations, %zu contacts, %zu colours, capped %zu (last third %zu), diverged %zu, "
-                            "drift %.4f, creep %.4f: %s\n",
+                            "drift %.4f, creep %.4f, %.2f%% of contacts kept: %s\n",
                             x.ms_mean, x.ms_median, 100 * x.penetration, 100 * x.state_penetration,
                             100 * x.state_penetration_every_step, 100 * x.state_penetration_resting, x.flagged,
                             x.residual, x.iterations, x.contacts, x.colours, x.capped, x.capped_last_third, x.diverged,
-                            x.drift, x.creep, verdict(r, x));
+                            x.drift, x.creep, 100 * x.warm_kept, verdict(r, x));
                 if (r.phases)
                   std::printf("    phases (medians): detection %.3f ms, solve %.3f ms, integration %.3f ms\n",
                               x.ms_detection, x.ms_solve, x.ms_integration);
                 std::fflush(stdout);
                 if (csv)
-                  std::fprintf(csv, "%s,%zu,%g,%s,%s,%g,%g,%g,%ld,%.4f,%.4f,%zu,%zu,%.6g,%.4g,%.2f,%zu,%zu,%.6g,%.4f,%.5f,%s,%.6g,%zu,%.4f,%.4f,%.4f,%s,%.6f,%.6g,%.6g,%zu\n",
+                  std::fprintf(csv, "%s,%zu,%g,%s,%s,%g,%g,%g,%ld,%.4f,%.4f,%zu,%zu,%.6g,%.4g,%.2f,%zu,%zu,%.6g,%.4f,%.5f,%s,%.6g,%zu,%.4f,%.4f,%.4f,%s,%.6f,%.6g,%.6g,%zu,%.5f\n",
                                r.scene.c_str(), n, ratio, method.c_str(), budget.c_str(), r.margin, r.warm, dt, r.steps,
                                x.ms_mean, x.ms_median, x.contacts, x.colours, x.penetration, x.residual, x.iterations,
                                x.capped, x.diverged, x.kinetic, x.height, x.drift, verdict(r, x), x.state_penetration,
                                x.flagged, x.ms_detection, x.ms_solve, x.ms_integration, gpu.c_str(), x.creep,
-                               x.state_penetration_resting, x.state_penetration_every_step, x.capped_last_third);
+                               x.state_penetration_resting, x.state_penetration_every_step, x.capped_last_third,
+                               x.warm_kept);
               }
     if (csv) std::fclose(csv);
   } catch (const std::exception& e) {
