@@ -73,13 +73,10 @@ GPUSOLVE_HD Manifold<T> reduce_to_four(const ManifoldPoint<T>* c, int n, const m
   m.add(c[i1].p, c[i1].gap, c[i1].feature);
   const math::Vector3<T> diag = c[i1].p - c[i0].p;
   const T floor = T(1e-6) * across(i1);  // twice the area of a triangle worth keeping
-  const auto left = [&](int k) -> T {
-    const math::Vector3<T> d = c[k].p - c[i0].p;
-    return math::dot(math::Vector3<T>(diag % d), normal);
-  };
-  const auto right = [&](int k) -> T { return -left(k); };
-  const int i2 = detail::best_point(c, n, floor, left);
-  const int i3 = detail::best_point(c, n, floor, right);
+  T left[detail::max_candidates];  // twice the signed area of (i0, i1, k), once for both sides
+  for (int k = 0; k < n; ++k) left[k] = math::dot(math::Vector3<T>(diag % math::Vector3<T>(c[k].p - c[i0].p)), normal);
+  const int i2 = detail::best_point(c, n, floor, [&](int k) { return left[k]; });
+  const int i3 = detail::best_point(c, n, floor, [&](int k) { return -left[k]; });
   if (i2 >= 0) m.add(c[i2].p, c[i2].gap, c[i2].feature);
   if (i3 >= 0) m.add(c[i3].p, c[i3].gap, c[i3].feature);
   return m;
