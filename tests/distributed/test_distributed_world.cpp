@@ -15,6 +15,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "catch_compat.hpp"
@@ -164,17 +165,23 @@ void check_near(const Compared& c, bool exactly, double position, double velocit
   }
 }
 
+// How far a distributed run may part from one World through the order of its
+// sums: positions (m), velocities (m/s), penetration (relative).
+struct SumOrder {
+  double position = 1e-9, velocity = 1e-7, penetration = 1e-6;
+};
+
 // A distributed run against one World: the same contacts (at least `landed`)
 // and penetration, every body where one World put it (`exactly`, or but for
 // the order of the sums).
-void check_matches(const Compared& c, std::size_t landed, bool exactly = false) {
+void check_matches(const Compared& c, std::size_t landed, bool exactly = false, SumOrder order = {}) {
   INFO("ranks " << ranks_of_world() << ": position " << c.position << ", velocity " << c.velocity << ", contacts "
                 << c.contacts << " / " << c.contacts_single << ", penetration " << c.penetration << " / "
                 << c.penetration_single);
   CHECK(c.contacts == c.contacts_single);
   CHECK(c.contacts >= landed);
-  CHECK(c.penetration == Approx(c.penetration_single).epsilon(1e-6));
-  check_near(c, exactly, 1e-9, 1e-7);
+  CHECK(c.penetration == Approx(c.penetration_single).epsilon(order.penetration));
+  check_near(c, exactly, order.position, order.velocity);
 }
 
 }  // namespace
@@ -209,10 +216,22 @@ TEST_CASE("distributed: a pile of boxes steps as one World does, under Jacobi an
   check_matches(compare<Substepping<>>(box_pile(), SolverSettings<double>{}, 60), 75);
 }
 
+// CG's step lengths are ratios of sums over all contacts. On the GPU each rank
+// reduces its own contacts in CUB's order, not one World's, and at 2 ranks a pile
+// parted from one World by 1.6e-6 m and 1.9e-4 m/s after 60 steps, with the same
+// contacts and penetration to 1.7e-4 (H100, 2026-12-07); on the CPU backend the
+// sums differ only where the ranks' shares meet. A rank missing the others' sums
+// parts by centimetres (the Gauss-Seidel case below).
 TEST_CASE("distributed: AcceleratedCG steps as one World does (its sums, minimum and residual over the ranks)",
           "[distributed]") {
-  check_matches(compare<AcceleratedCG>(sphere_pile(), SolverSettings<double>{}, 60), 0);
-  check_matches(compare<AcceleratedCG>(box_pile(), SolverSettings<double>{}, 60), 75);
+  const bool gpu = std::is_same_v<TestDevice, device::gpu>;
+  const SumOrder order = gpu ? SumOrder{2e-5, 2e-3, 2e-3} : SumOrder{};
+  {
+    INFO("spheres");
+    check_matches(compare<AcceleratedCG>(sphere_pile(), SolverSettings<double>{}, 60), 0, false, order);
+  }
+  INFO("boxes");
+  check_matches(compare<AcceleratedCG>(box_pile(), SolverSettings<double>{}, 60), 75, false, order);
 }
 
 // Coloured Gauss-Seidel sweeps each rank's contacts and sums a body's changes
