@@ -1,6 +1,6 @@
 // The whole time step, per phase and in total, on the GPU and the CPU backend.
 //
-// Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance,rolling]
+// Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance,check50,rolling]
 //                          [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
 //                          [--cpu-max 1000000] [--one-world] [--reorder N] [--csv FILE]
 //
@@ -11,6 +11,8 @@
 //   atomic10:  the same with atomic accumulation (one phase per iteration);
 //   defaults:  World<device::gpu> with SolverSettings{} (APGD, 50 iterations);
 //   tolerance: APGD to the default tolerance 5e-3, checked every 10, at most 500;
+//   check50:   the defaults with one residual check, after the 50th iteration (the
+//              defaults until 2026-12-07): what the defaults' checks cost;
 //   rolling:   the defaults with the six-row contact model (ConeRollingFriction), rolling
 //              and spinning resistance 0.01 (a hundredth of the radius): the cost of
 //              the angular rows against `defaults` (issue 37).
@@ -115,10 +117,12 @@ SolverSettings<T> settings_for(const std::string& mode, const std::string& loop)
     s.tolerance = T(1e-30);  // runs all 10
   } else if (mode == "tolerance") {
     s.max_iterations = 500, s.check_every = 10;
+  } else if (mode == "check50") {
+    s.check_every = 50;
   } else if (mode == "rolling") {
     s.rolling = T(0.01), s.spinning = T(0.01);
   } else if (mode != "defaults") {
-    throw InvalidArgumentError("bench: unknown mode '" + mode + "' (jacobi10, atomic10, defaults, tolerance, rolling)");
+    throw InvalidArgumentError("bench: unknown mode '" + mode + "' (jacobi10, atomic10, defaults, tolerance, check50, rolling)");
   }
   return s;
 }
@@ -252,7 +256,7 @@ Row time_mode(bool gpu, const std::string& mode, const std::string& loop, const 
 int main(int argc, char** argv) {
   Options o;
   const char* usage =
-      "[--n LIST] [--modes jacobi10,defaults,tolerance,rolling] [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
+      "[--n LIST] [--modes jacobi10,defaults,tolerance,check50,rolling] [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
       "[--one-world] [--reorder N] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

@@ -160,8 +160,10 @@ TEST_CASE("the solver's runs of iterations end at each residual check and at the
   CHECK(m.next_check(50) == 50);  // the last iteration always checks, off the grid of 7
   for (std::size_t it = 1; it <= 50; ++it) CHECK(m.checks(m.next_check(it)));
   CHECK(ConvergenceRule<double>(s).max_checks() == 8);  // 7, 14, ..., 49 and 50
-  CHECK(ConvergenceRule<double>(SolverSettings<double>{}).next_check(1) == 50);  // the defaults: one run, one check
-  CHECK(ConvergenceRule<double>(SolverSettings<double>{}).max_checks() == 1);
+  // The defaults (check_every 0): a check every 10 of the 50 iterations.
+  CHECK(ConvergenceRule<double>(SolverSettings<double>{}).next_check(1) == 10);
+  CHECK(ConvergenceRule<double>(SolverSettings<double>{}).next_check(41) == 50);
+  CHECK(ConvergenceRule<double>(SolverSettings<double>{}).max_checks() == 5);
 }
 
 TEST_CASE("the convergence rule stops where the host's monitor stops and records the same checks", "[rbd_step]") {

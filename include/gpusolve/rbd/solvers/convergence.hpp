@@ -72,6 +72,10 @@ class ResidualCheck {
   VectorD1<T, device_is<Device>> out_;  // the reduction's result slot
 };
 
+// The iterations between residual checks where SolveSettings::check_every is
+// 0: a resting scene's solve stops at its first check below the tolerance.
+inline constexpr std::size_t default_check_every = 10;
+
 // The stopping and divergence rules of the residual checks, as plain data: the
 // host applies them between runs of iterations (ConvergenceMonitor), and a
 // persistent kernel applies the same rules itself, every thread reaching the
@@ -90,7 +94,7 @@ struct ConvergenceRule {
   explicit ConvergenceRule(const SolverSettings<T>& s)
       : tolerance(s.tolerance),
         divergence_growth(s.divergence_growth),
-        check_every(s.check_every),
+        check_every(s.check_every != 0 ? s.check_every : default_check_every),
         max_iterations(s.max_iterations),
         divergence_checks(s.divergence_checks),
         previous(std::numeric_limits<T>::infinity()),

@@ -69,7 +69,7 @@ class SubsteppingSolver {
     SolverSettings<T> sub = s;
     sub.dt = h;
     sub.max_iterations = s.max_iterations / n > 0 ? s.max_iterations / n : 1;
-    sub.check_every = s.check_every < sub.max_iterations ? s.check_every : sub.max_iterations;
+    if (s.check_every > sub.max_iterations) sub.check_every = sub.max_iterations;  // 0 stays the inner method's own
     sub.correction = T(1) - std::pow(T(1) - s.correction, T(1) / T(n));
     const math::Vector3<T> g(s.gravity[0], s.gravity[1], s.gravity[2]);
     SolverStats<T> stats;
