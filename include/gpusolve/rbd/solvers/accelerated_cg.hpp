@@ -435,7 +435,7 @@ class AcceleratedCGSolver : public ContactSolverBase<Device, T, Model> {
   // Its residual checks where SolveSettings::check_every is 0, the thesis's
   // every 50: checked every 10 iterations (each check takes no momentum) and
   // stopped at the first under 5e-3, a settled 12-layer pyramid crept 1.1% of a
-  // box in 2 s, within the test's 2e-4 at 50 (tests/host/test_rbd_shapes_physics.cpp).
+  // box's half extent in 2 s, within the test's 2e-4 at 50 (tests/host/test_rbd_shapes_physics.cpp).
   static constexpr std::size_t default_check_every = 50;
 
   // A distributed solve (rbd/distributed/): every sum and the residual are
