@@ -38,7 +38,8 @@
 // --warm: SolverSettings::warm_start (default: the library's). --backend cpu
 // runs the same World on device::cpu (no GPU needed; host clock, OpenMP
 // threads): its accuracy columns are the method's, its times only the host's.
-// --trace N: a line every N steps (kinetic energy, iterations, residual, contacts).
+// --trace N: a line every N steps (kinetic energy, iterations, residual, contacts,
+// and the residual at each check with the iteration it fell after).
 // --phases: World::set_phase_timing on; the medians of detection, solve and
 // integration over the last third go to the ms_detection.. columns (0 without).
 // --budgets: the defaults changed by one thing: itK, K iterations; tolX, the
@@ -324,9 +325,13 @@ Result run(const Run& r) {
     const rbd::StepStats<T> st = world.step();
     const double t = timer.stop_ms();
     out.capped += st.solver.status == rbd::SolverStatus::max_iterations;
-    if (r.trace > 0 && step % r.trace == 0)
-      std::printf("    step %ld: kinetic energy %.4g, %zu iterations, residual %.3g, %zu contacts\n", step,
+    if (r.trace > 0 && step % r.trace == 0) {
+      std::printf("    step %ld: kinetic energy %.4g, %zu iterations, residual %.3g, %zu contacts, checks", step,
                   double(st.kinetic_energy), st.solver.iterations, double(st.solver.residual()), st.solver.contacts);
+      for (std::size_t k = 0; k < st.solver.residuals.size(); ++k)
+        std::printf(" %zu:%.3g", st.solver.checked_at[k], double(st.solver.residuals[k]));
+      std::printf("\n");
+    }
     out.diverged += st.solver.status == rbd::SolverStatus::diverged || !std::isfinite(st.max_penetration);
     if (step >= last_third && step < timed_end) {
       ms.push_back(t);
