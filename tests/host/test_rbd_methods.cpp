@@ -52,15 +52,32 @@ TEST_CASE("contact colouring: no colour holds two contacts of one moving body, a
   again.build(b, c.view());
   REQUIRE(again.colours() == col.colours());
   for (std::size_t p = 0; p < c.size(); ++p) REQUIRE(again.order()[p] == col.order()[p]);
-  // Built again, it runs the rounds the last build needed and a quarter more
-  // in one batch, and colours alike.
+  CHECK_FALSE(col.kept());
   const std::size_t needed = col.rounds_needed();
   CHECK(needed > 0);
   CHECK(needed <= col.rounds());
   const std::vector<std::uint32_t> first(col.order(), col.order() + c.size());
+  // Built again on the same pairs, it keeps its colours.
   col.build(b, c.view());
-  CHECK(col.rounds() == needed + needed / 4 + 2);
+  CHECK(col.kept());
+  REQUIRE(col.colours() == again.colours());
+  for (std::size_t p = 0; p < c.size(); ++p) REQUIRE(col.order()[p] == first[p]);
+  // A body that stops moving changes what conflicts: coloured anew. Moving
+  // again, the pairs are the first build's: coloured anew, running the rounds
+  // the last build needed and a quarter more in one batch, and alike.
+  std::uint32_t inner = 0;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (b.moving(c.a(i)) && b.moving(c.b(i))) inner = c.a(i);
+  b.status[inner] = fixed;
+  col.build(b, c.view());
+  CHECK_FALSE(col.kept());
+  const std::size_t needed_fixed = col.rounds_needed();
+  b.status[inner] = active;
+  col.build(b, c.view());
+  CHECK_FALSE(col.kept());
+  CHECK(col.rounds() == needed_fixed + needed_fixed / 4 + 2);
   CHECK(col.rounds_needed() == needed);
+  REQUIRE(col.colours() == again.colours());
   for (std::size_t p = 0; p < c.size(); ++p) REQUIRE(col.order()[p] == first[p]);
 }
 

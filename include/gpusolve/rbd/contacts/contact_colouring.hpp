@@ -9,10 +9,7 @@
 
 #include <cuda/atomic>
 #include <thrust/binary_search.h>
-#include <thrust/copy.h>
-#include <thrust/iterator/counting_iterator.h>
-#include <thrust/sequence.h>
-#include <thrust/sort.h>
+#include <thrust/execution_policy.h>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
@@ -20,6 +17,7 @@
 #include "gpusolve/rbd/contacts/contact_grouping.hpp"
 #include "gpusolve/container/ensure_size.hpp"
 #include "gpusolve/rbd/execution/backend.hpp"
+#include "gpusolve/rbd/execution/device_algorithms.hpp"
 
 namespace gpusolve::rbd {
 
@@ -121,6 +119,48 @@ struct PickColour {
   }
 };
 
+// What a colouring depends on at contact i: its bodies, each with its top bit
+// set where the body moves (a build keeps them, the next compares them).
+template <class BV>
+GPUSOLVE_HD std::uint32_t colouring_end(const BV& b, std::uint32_t k) {
+  return b.moving(k) ? k | 0x80000000u : k;
+}
+template <class BV, class CV>
+struct KeepPairs {
+  BV b;
+  CV c;
+  std::uint32_t *a_ends, *b_ends;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    a_ends[i] = colouring_end(b, c.a[i]), b_ends[i] = colouring_end(b, c.b[i]);
+  }
+};
+// Sets *changed where contact i's ends differ from those a build kept.
+template <class BV, class CV>
+struct ComparePairs {
+  BV b;
+  CV c;
+  const std::uint32_t *a_ends, *b_ends;
+  std::uint32_t* changed;
+  GPUSOLVE_HD void operator()(std::size_t i) const {
+    if (a_ends[i] != colouring_end(b, c.a[i]) || b_ends[i] != colouring_end(b, c.b[i]))
+      cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(*changed).store(1u, cuda::std::memory_order_relaxed);
+  }
+};
+
+struct Sequence {
+  std::uint32_t* out;
+  GPUSOLVE_HD void operator()(std::size_t i) const { out[i] = std::uint32_t(i); }
+};
+// bounds[k]: the first place in the sorted colours `sorted` (n of them) holding k or more.
+struct ColourBounds {
+  const std::uint32_t* sorted;
+  std::size_t n;
+  std::uint32_t* bounds;
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    bounds[k] = std::uint32_t(thrust::lower_bound(thrust::seq, sorted, sorted + n, std::uint32_t(k)) - sorted);
+  }
+};
+
 // The colours of one build (ContactColouring::view()): colour k's pairs are
 // those whose first points are order[bounds[k]], ..., order[bounds[k + 1] - 1],
 // with `bounds` in the contacts' backend memory; `widest`: the most pairs of
@@ -186,7 +226,9 @@ GPUSOLVE_HD void sweep_colours(const E& e, const CV& c, const ColourView& colour
 // pairs' first points colour by colour, colour k occupying [offset(k),
 // offset(k + 1)), and the later points behind them; those offsets are the
 // host's, read back once per build. Past 64 colours a colour number may stay
-// empty (see PickColour).
+// empty (see PickColour). Where the contacts join the same bodies in the same
+// order as at the last build, none of them having started or stopped moving (a
+// structure at rest), the build keeps its colours: one comparison and one read-back.
 template <class Device>
 class ContactColouring {
  public:
@@ -195,12 +237,60 @@ class ContactColouring {
   template <class BV, class CV>
   void build(const BV& b, const CV& c, stream_t stream = stream_t{}) {
     const std::size_t nc = c.size();
+    kept_ = nc != 0 && same_pairs(b, c, stream);
+    if (kept_) return;
+    kept_count_ = 0;
     offsets_.assign(1, 0);
     if (nc == 0) return;
+    const std::uint32_t colours = colour(b, c, stream);
+    sort_by_colour(nc, colours, stream);
+    keep_pairs(b, c, stream);
+  }
+
+  std::size_t colours() const { return offsets_.size() - 1; }
+  // The colours for a program's sweep (detail::sweep_colours).
+  detail::ColourView view() const {
+    std::size_t widest = 0;
+    for (std::size_t k = 0; k < colours(); ++k) widest = std::max(widest, offsets_[k + 1] - offsets_[k]);
+    return {order_.data(), bounds_.data(), colours(), widest};
+  }
+  std::size_t offset(std::size_t k) const { return offsets_[k]; }
+  const std::uint32_t* order() const { return order_.data(); }
+  const std::uint32_t* colour() const { return colour_.data(); }
+  // The rounds the last build ran, and those it needed (the last that coloured a contact).
+  std::size_t rounds() const { return rounds_; }
+  std::size_t rounds_needed() const { return needed_; }
+  // Whether the last build kept the colours of the one before.
+  bool kept() const { return kept_; }
+
+ private:
+  // Whether the contacts in `c` join the bodies of the last build's, in its
+  // order, with the same bodies moving (bodies numbered past 2^31 are never compared).
+  template <class BV, class CV>
+  bool same_pairs(const BV& b, const CV& c, stream_t stream) {
+    if (c.size() != kept_count_ || b.size() > 0x80000000u) return false;
+    changed_.fill(0u, stream);
+    launch(Device{}, c.size(), detail::ComparePairs<BV, CV>{b, c, a_ends_.data(), b_ends_.data(), changed_.data()},
+           stream);
+    return detail::read_back<Device>(changed_.data(), 0, stream) == 0;
+  }
+  template <class BV, class CV>
+  void keep_pairs(const BV& b, const CV& c, stream_t stream) {
+    if (b.size() > 0x80000000u) return;
+    gpusolve::detail::ensure_size(a_ends_, c.size());
+    gpusolve::detail::ensure_size(b_ends_, c.size());
+    if (changed_.size_x() == 0) changed_.resize(1);
+    launch(Device{}, c.size(), detail::KeepPairs<BV, CV>{b, c, a_ends_.data(), b_ends_.data()}, stream);
+    kept_count_ = c.size();
+  }
+
+  // Every pair's colour in colour_, in rounds (see the class); returns the colours used.
+  template <class BV, class CV>
+  std::uint32_t colour(const BV& b, const CV& c, stream_t stream) {
+    const std::size_t nc = c.size();
     const Device dev{};
     grouping_.build(b, c, stream);
     gpusolve::detail::ensure_size(colour_, nc);
-    gpusolve::detail::ensure_size(order_, nc);
     gpusolve::detail::ensure_size(best_, b.size());
     if (counters_.size_x() == 0) counters_.resize(1);
     counters_.fill(detail::ColouringCounters{}, stream);
@@ -224,44 +314,36 @@ class ContactColouring {
       coloured = counted.coloured, colours = counted.colours, needed_ = counted.rounds;
     }
     rounds_ = round;
-    const auto policy = detail::thrust_policy(dev, stream);
-    thrust::sequence(policy, order_.data(), order_.data() + nc);
-    gpusolve::detail::ensure_size(sorted_colour_, nc);
-    thrust::copy(policy, colour_.data(), colour_.data() + nc, sorted_colour_.data());
-    thrust::stable_sort_by_key(policy, sorted_colour_.data(), sorted_colour_.data() + nc, order_.data());
+    return colours;
+  }
+
+  // order_: the contacts by colour (a stable sort of their indices, later
+  // points, marked `follows`, last); bounds_ and offsets_: where each colour starts.
+  void sort_by_colour(std::size_t nc, std::uint32_t colours, stream_t stream) {
+    const Device dev{};
+    for (U32* v : {&order_, &sorted_colour_, &sequence_}) gpusolve::detail::ensure_size(*v, nc);
+    launch(dev, nc, detail::Sequence{sequence_.data()}, stream);
+    algorithms_.stable_sort_pairs(colour_.data(), sorted_colour_.data(), sequence_.data(), order_.data(), nc, 32,
+                                  stream);
     gpusolve::detail::ensure_size(bounds_, colours + 1);
-    const thrust::counting_iterator<std::uint32_t> first(0);
-    thrust::lower_bound(policy, sorted_colour_.data(), sorted_colour_.data() + nc, first, first + (colours + 1),
-                        bounds_.data());
+    launch(dev, colours + 1, detail::ColourBounds{sorted_colour_.data(), nc, bounds_.data()}, stream);
     offsets_.resize(colours + 1);
     bounds_host_.resize(bounds_.size_x());
-    bounds_host_ = bounds_;  // one copy back: the host launches colour by colour
+    bounds_host_ = bounds_;  // one copy back: the host sizes each colour's phase
     for (std::size_t k = 0; k <= colours; ++k) offsets_[k] = bounds_host_(k);
   }
 
-  std::size_t colours() const { return offsets_.size() - 1; }
-  // The colours for a program's sweep (detail::sweep_colours).
-  detail::ColourView view() const {
-    std::size_t widest = 0;
-    for (std::size_t k = 0; k < colours(); ++k) widest = std::max(widest, offsets_[k + 1] - offsets_[k]);
-    return {order_.data(), bounds_.data(), colours(), widest};
-  }
-  std::size_t offset(std::size_t k) const { return offsets_[k]; }
-  const std::uint32_t* order() const { return order_.data(); }
-  const std::uint32_t* colour() const { return colour_.data(); }
-  // The rounds the last build ran, and those it needed (the last that coloured a contact).
-  std::size_t rounds() const { return rounds_; }
-  std::size_t rounds_needed() const { return needed_; }
-
- private:
   ContactGrouping<Device> grouping_;
-  U32 colour_, sorted_colour_, order_, bounds_;
+  detail::DeviceAlgorithms<Device> algorithms_;
+  U32 colour_, sorted_colour_, order_, bounds_, sequence_;
+  U32 a_ends_, b_ends_, changed_;  // the last build's pairs (KeepPairs), and what compares them
   VectorD1<detail::ColouringCounters, device_is<Device>> counters_;  // one, read back in one copy per batch
   VectorD1<std::uint32_t, device_is<device::cpu>> bounds_host_;
   VectorD1<std::uint64_t, device_is<Device>> best_;
   std::vector<std::size_t> offsets_{0};
-  std::size_t rounds_ = 0;
+  std::size_t rounds_ = 0, kept_count_ = 0;
   std::uint32_t needed_ = 0;
+  bool kept_ = false;
 };
 
 }  // namespace gpusolve::rbd

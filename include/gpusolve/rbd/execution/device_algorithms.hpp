@@ -1,14 +1,16 @@
-// DeviceAlgorithms: the device-wide scan and reductions of a time step, queued
+// DeviceAlgorithms: the device-wide scan, reductions and sort of a time step, queued
 // on a stream with one temporary buffer kept between calls, so that a warm step
 // allocates nothing and never waits for the device. GPU: CUB; host: sequential
 // loops with the same results.
 #pragma once
 
+#include <algorithm>
 #include <climits>
 #include <cstddef>
 #include <cstdint>
 #include <numeric>
 #include <type_traits>
+#include <vector>
 
 #include "gpusolve/container/vector_d1.hpp"
 #include "gpusolve/core/config.hpp"
@@ -18,6 +20,7 @@
 
 #if GPUSOLVE_HAS_NVCC
 #include <cub/device/device_reduce.cuh>
+#include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 #endif
 
@@ -123,6 +126,32 @@ class DeviceAlgorithms {
   template <class F, class T>
   void max_into(std::size_t n, F f, T init, T* out, stream_t stream) {
     reduce_into(n, f, init, MaxOp{}, out, stream);
+  }
+
+  // keys_out and values_out: the n pairs (keys_in[i], values_in[i]) ordered by
+  // key, pairs of equal keys in their order (stable); every key is below
+  // 2^key_bits, the bits a GPU radix sort looks at. Unlike thrust's sorts it
+  // neither allocates nor waits for the device once the kept buffer is warm.
+  template <class K, class V>
+  void stable_sort_pairs(const K* keys_in, K* keys_out, const V* values_in, V* values_out, std::size_t n,
+                         int key_bits, stream_t stream) {
+    if (n == 0) return;
+    if constexpr (gpu) {
+#if GPUSOLVE_HAS_NVCC
+      run([&](void* temp, std::size_t& bytes) {
+        return cub::DeviceRadixSort::SortPairs(temp, bytes, keys_in, keys_out, values_in, values_out, items(n), 0,
+                                               key_bits, stream);
+      });
+#else
+      unsupported();
+#endif
+    } else {
+      (void)key_bits, (void)stream;
+      std::vector<std::size_t> order(n);
+      for (std::size_t i = 0; i < n; ++i) order[i] = i;
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return keys_in[x] < keys_in[y]; });
+      for (std::size_t i = 0; i < n; ++i) keys_out[i] = keys_in[order[i]], values_out[i] = values_in[order[i]];
+    }
   }
 
   // Grows the kept buffer for reduce_into(n, f, init, op, out) now, so that
