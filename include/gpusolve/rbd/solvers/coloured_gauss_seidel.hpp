@@ -26,50 +26,90 @@ namespace gpusolve::rbd {
 
 namespace detail {
 
-// The velocities a pair's two bodies had when a pass of the sweep reached the
-// pair: each of the pair's points reads its error from them (GaussSeidelContact).
+// The velocities of a pair's two bodies as its sweep goes: loaded when the
+// sweep reaches the pair, moved by each pass's changes (add), and stored once
+// after its last pass (store). Each of the pair's points reads its error from
+// them (GaussSeidelContact); no other pair of the colour touches a moving body
+// of the pair, and a fixed one never changes.
 template <class T>
 struct PairVelocities : CurrentIterate<T> {
-  std::uint32_t a;
+  std::uint32_t a, b;
+  bool move_a, move_b;
   math::Vector3<T> va, wa, vb, wb;
   template <class BV>
-  GPUSOLVE_HD PairVelocities(const BV& b, std::uint32_t a_, std::uint32_t b_) : a(a_) {
-    CurrentIterate<T>::velocity(b, a_, va, wa);
-    CurrentIterate<T>::velocity(b, b_, vb, wb);
+  GPUSOLVE_HD PairVelocities(const BV& bodies, std::uint32_t a_, std::uint32_t b_)
+      : a(a_), b(b_), move_a(bodies.moving(a_)), move_b(bodies.moving(b_)) {
+    CurrentIterate<T>::velocity(bodies, a_, va, wa);
+    CurrentIterate<T>::velocity(bodies, b_, vb, wb);
   }
   template <class BV>
   GPUSOLVE_HD void velocity(const BV&, std::uint32_t k, math::Vector3<T>& v, math::Vector3<T>& w) const {
     v = k == a ? va : vb;
     w = k == a ? wa : wb;
   }
+  template <class Sums>
+  GPUSOLVE_HD void add(const Sums& d) {
+    if (move_a) va += d.dva, wa += d.dwa;
+    if (move_b) vb += d.dvb, wb += d.dwb;
+  }
+  template <class BV>
+  GPUSOLVE_HD void store(const BV& bodies) const {
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (move_a) bodies.v(a, k) = va[k], bodies.w(a, k) = wa[k];
+      if (move_b) bodies.v(b, k) = vb[k], bodies.w(b, k) = wb[k];
+    }
+  }
+};
+
+// The velocity changes of a pass's points, summed in registers (a
+// ResolveCollisions sink): stored to memory point by point, each update's loads
+// waited for the store before them, a memory round trip or more per point.
+template <class T>
+struct PassSums {
+  math::Vector3<T> dva, dwa, dvb, dwb;
+};
+template <class T>
+struct PassSink {
+  PassSums<T>* sums;
+  GPUSOLVE_HD void add(std::size_t, const BodyResponse<T>& d) const {
+    sums->dva += d.dva, sums->dwa += d.dwa, sums->dvb += d.dvb, sums->dwb += d.dwb;
+  }
 };
 
 // One body pair's points [first, end) in two passes: in each, every point's
 // velocity error from the velocities the pair had when the pass began, and its
-// projected update with its 1/k share of a step (InverseBlocks), applied to the
-// bodies at once (no other pair of its colour touches them). Gauss-Seidel from
-// pair to pair, Jacobi within one: swept one after another, each of a face's
-// points answered the turn its predecessor's impulse gave the box, and the
-// fixed order left a sideways push that a finite solve did not cancel (the
-// 20-box stack crept 0.56% of a half extent in 10 s and fell at 100 to 400
-// iterations); one pass at 1/k converged too slowly for a tower of thin slabs
-// (it sank 1.3% in 10 s), two hold it (docs/methods.md). A pair of one point
-// takes one. The first pass records the residual: the change the sweep found.
+// projected update with its 1/k share of a step (InverseBlocks); the pass's
+// changes move the pair's velocities at its end, stored after the last pass.
+// Gauss-Seidel from pair to pair, Jacobi within one: swept one after another,
+// each of a face's points answered the turn its predecessor's impulse gave the
+// box, and the fixed order left a sideways push that a finite solve did not
+// cancel (the 20-box stack crept 0.56% of a half extent in 10 s and fell at
+// 100 to 400 iterations); one pass at 1/k converged too slowly for a tower of
+// thin slabs (it sank 1.3% in 10 s), two hold it (docs/methods.md). A pair of
+// one point takes one. The first pass records the residual: the change the
+// sweep found. Each point's bodies are loaded with its error's data, before
+// its impulse (ContactBodies), so that a point costs one memory round trip.
 template <class Model, class BV, class CV, class T>
 struct GaussSeidelContact {
   CalcNextPhi<Model, BV, CV, T> phi;
   ResolveCollisions<Model, BV, CV, DirectSink<BV, T>, T> resolve;
   GPUSOLVE_HD void operator()(std::size_t first, std::size_t end) const {
     const std::size_t passes = end - first > 1 ? 2 : 1;  // one point (every sphere pair): one update
+    PairVelocities<T> pair(phi.b, phi.c.a[first], phi.c.b[first]);
     GPUSOLVE_NO_UNROLL
     for (std::size_t p = 0; p < passes; ++p) {
-      const PairVelocities<T> reached(phi.b, phi.c.a[first], phi.c.b[first]);
+      PassSums<T> sums{};
+      const ResolveCollisions<Model, BV, CV, PassSink<T>, T> summing{
+          resolve.b, resolve.c, resolve.rhs, {&sums}, resolve.omega, resolve.measure, resolve.residual};
       for (std::size_t i = first; i < end; ++i) {
+        const ContactBodies<T> bodies(phi.b, phi.c, i);
         T e[Model::rows];
-        phi.error(i, e, reached);
-        resolve.update(i, e, CurrentIterate<T>{}, LoadBodies{}, p == 0);
+        phi.error(i, e, pair);
+        summing.update(i, e, CurrentIterate<T>{}, bodies, p == 0);
       }
+      pair.add(sums);
     }
+    pair.store(phi.b);
   }
 };
 
