@@ -190,15 +190,6 @@ struct InColour {
   }
 };
 
-// A per-point f as a pair's: f(p) for each point, in order.
-template <class F>
-struct EachPointOfPair {
-  F f;
-  GPUSOLVE_HD void operator()(std::size_t first, std::size_t end) const {
-    for (std::size_t p = first; p < end; ++p) f(p);
-  }
-};
-
 // Queues f over the contacts of each colour, colour by colour, through a
 // program's executor e (persistent_loop.hpp), a barrier after each colour.
 GPUSOLVE_EXEC_CHECK_DISABLE

@@ -92,15 +92,15 @@ struct PassSink {
 template <class Model, class BV, class CV, class T>
 struct GaussSeidelContact {
   CalcNextPhi<Model, BV, CV, T> phi;
-  ResolveCollisions<Model, BV, CV, DirectSink<BV, T>, T> resolve;
+  ResolveCollisions<Model, BV, CV, PassSink<T>, T> resolve;  // its sink: each pass's sums
   GPUSOLVE_HD void operator()(std::size_t first, std::size_t end) const {
     const std::size_t passes = end - first > 1 ? 2 : 1;  // one point (every sphere pair): one update
     PairVelocities<T> pair(phi.b, phi.c.a[first], phi.c.b[first]);
     GPUSOLVE_NO_UNROLL
     for (std::size_t p = 0; p < passes; ++p) {
       PassSums<T> sums{};
-      const ResolveCollisions<Model, BV, CV, PassSink<T>, T> summing{
-          resolve.b, resolve.c, resolve.rhs, {&sums}, resolve.omega, resolve.measure, resolve.residual};
+      ResolveCollisions<Model, BV, CV, PassSink<T>, T> summing = resolve;
+      summing.sink.sums = &sums;
       for (std::size_t i = first; i < end; ++i) {
         const ContactBodies<T> bodies(phi.b, phi.c, i);
         T e[Model::rows];
@@ -110,6 +110,22 @@ struct GaussSeidelContact {
       pair.add(sums);
     }
     pair.store(phi.b);
+  }
+};
+
+// The warm start of a pair (a start program's sweep): the velocity changes of
+// its points' impulses in c.x, summed as a pass's (PassSink), stored once.
+template <class Model, class BV, class CV, class T>
+struct ApplyPairImpulses {
+  BV b;
+  CV c;
+  GPUSOLVE_HD void operator()(std::size_t first, std::size_t end) const {
+    PairVelocities<T> pair(b, c.a[first], c.b[first]);
+    PassSums<T> sums{};
+    const ApplyImpulses<Model, BV, CV, PassSink<T>, T> apply{b, c, {&sums}};
+    for (std::size_t i = first; i < end; ++i) apply(i);
+    pair.add(sums);
+    pair.store(b);
   }
 };
 
@@ -185,7 +201,7 @@ struct GaussSeidelStart {
     if (saving && first) e.each(save.b.size(), save);  // nothing in this phase writes a velocity
     e.each(blocks.c.size(), blocks);
     e.sync();
-    if (from_x && first) sweep(e, blocks.c, colours, EachPointOfPair<Apply>{apply});
+    if (from_x && first) sweep(e, blocks.c, colours, apply);
   }
 };
 
@@ -247,21 +263,19 @@ class ColouredGaussSeidelSolver : public ContactSolverBase<Device, T, Model> {
     const std::size_t width = c.size() > b.size() ? c.size() : b.size();
     run_.prepare(this->residual_terms(b, c), width, s, stream);
     const T omega = omega_of<ColouredGaussSeidelSolver>(s);
-    const detail::DirectSink<BV, T> sink{b};
     if (run_.exchange() != nullptr) sweep_start_.reserve(b);
     const detail::RankSweep<BV, T> sweep{sweep_start_.saver(b)};
     // Each attempt's start: a pair's k points take 1/k of a step each, as in
     // Jacobi (GaussSeidelContact updates them together).
     auto start = [&](bool first_attempt) {
       return detail::GaussSeidelStart<detail::CopyVelocities<BV, T>, InverseBlocks<Model, BV, CV, T>,
-                                      ApplyImpulses<Model, BV, CV, detail::DirectSink<BV, T>, T>,
-                                      detail::RankSweep<BV, T>>{
-          this->start_.saver(b), {b, c, run_.scale()}, {b, c, sink}, colours, sweep,
+                                      detail::ApplyPairImpulses<Model, BV, CV, T>, detail::RankSweep<BV, T>>{
+          this->start_.saver(b), {b, c, run_.scale()}, {b, c}, colours, sweep,
           first_attempt && s.max_retries > 0, from_x && first_attempt};
     };
     const VectorD2View<T> rhs{};  // GaussSeidelContact keeps each error in registers: no store
     using Contact = detail::GaussSeidelContact<Model, BV, CV, T>;
-    const Contact plain{{b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, sink, omega, false, this->residual_.view()}};
+    const Contact plain{{b, c, rhs, T(1) / s.dt, s.correction}, {b, c, rhs, {nullptr}, omega, false, this->residual_.view()}};
     Contact measuring = plain;
     measuring.resolve.measure = true;
     const auto terms = this->residual_terms(b, c);
