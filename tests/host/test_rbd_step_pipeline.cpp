@@ -203,3 +203,41 @@ TEST_CASE("the convergence rule stops where the host's monitor stops and records
   CHECK(capped.stop(10, 0.4));
   CHECK(capped.status == SolverStatus::max_iterations);
 }
+
+TEST_CASE("the default checks: every 10 iterations, but only the last after a check far from the tolerance",
+          "[rbd_step]") {
+  SolverSettings<double> s;  // check_every 0, 50 iterations, tolerance 5e-3
+  const double far = far_from_tolerance * s.tolerance;
+  ConvergenceRule<double> near(s);
+  CHECK(near.next_check(1) == 10);
+  CHECK_FALSE(near.stop(10, 0.99 * far));  // within reach: every 10 as before
+  CHECK(near.next_check(11) == 20);
+  CHECK(near.checks(20));
+  ConvergenceRule<double> off(s);
+  CHECK_FALSE(off.stop(10, 1.01 * far));  // a pile's solve: the next check is the last
+  CHECK(off.next_check(11) == 50);
+  CHECK_FALSE(off.checks(20));
+  CHECK(off.checks(50));
+  CHECK(off.stop(50, 1e-3));
+  CHECK(off.status == SolverStatus::converged);
+  // A schedule the settings name is kept whatever the residual.
+  s.check_every = 10;
+  ConvergenceRule<double> named(s);
+  CHECK_FALSE(named.stop(10, 100 * far));
+  CHECK(named.next_check(11) == 20);
+  // The host's monitor and the device's record agree on where the checks fell.
+  s.check_every = 0;
+  const std::vector<double> residuals = {0.5 * far, 2 * far, 0.01};
+  SolverStats<double> monitored;
+  ConvergenceMonitor<double> m(s, monitored);
+  ConvergenceRule<double> rule(s);
+  for (std::size_t k = 0, it = 0; k < residuals.size(); ++k) {
+    it = rule.next_check(it + 1);
+    CHECK(rule.stop(it, residuals[k]) == m.stop(it, residuals[k]));
+  }
+  CHECK(monitored.checked_at == std::vector<std::size_t>{10, 20, 50});
+  SolverStats<double> recorded;
+  record_checks(rule, residuals, recorded);
+  CHECK(recorded.checked_at == monitored.checked_at);
+  CHECK(recorded.status == SolverStatus::max_iterations);
+}

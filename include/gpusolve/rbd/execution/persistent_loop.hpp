@@ -186,10 +186,11 @@ __global__ void __launch_bounds__(persistent_block_size)
   __shared__ bool stop, again;  // two flags: a thread may still read one while the first thread writes the other
   const bool first_thread = threadIdx.x == 0, writer = first_thread && blockIdx.x == 0;
   if (first_thread) run = CheckedRun<Rule>{rule, 0, 0, 0};
+  __syncthreads();
   for (bool retry = false;; retry = true) {
     start(e, retry);
     for (std::size_t first = 1;;) {
-      const std::size_t last = rule.next_check(first);
+      const std::size_t last = run.rule.next_check(first);  // its schedule may follow the checks taken
       for (std::size_t k = first; k <= last; ++k) program(e, k - first + 1, k == last);
       if (first_thread) {
         const T r = *residual;  // rewritten only after the next run's first barrier

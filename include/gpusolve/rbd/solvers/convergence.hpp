@@ -72,9 +72,15 @@ class ResidualCheck {
   VectorD1<T, device_is<Device>> out_;  // the reduction's result slot
 };
 
-// The iterations between residual checks where SolveSettings::check_every is
-// 0: a resting scene's solve stops at its first check below the tolerance.
+// The checks where SolveSettings::check_every is 0: every 10 iterations, so
+// that a resting scene's solve stops at its first check below the tolerance;
+// but after a check more than `far_from_tolerance` times the tolerance, only
+// the last, since a solve that far off does not stop before its cap and its
+// checks would buy nothing (docs/tuning/solve.md: settled, the 1 000-sphere
+// pile's residual after 10 iterations was 6 to 22 times the tolerance, the
+// standing scenes' at most 1.2 times).
 inline constexpr std::size_t default_check_every = 10;
+inline constexpr double far_from_tolerance = 4;
 
 // The stopping and divergence rules of the residual checks, as plain data: the
 // host applies them between runs of iterations (ConvergenceMonitor), and a
@@ -89,6 +95,8 @@ struct ConvergenceRule {
   std::size_t growing;
   std::size_t iterations;  // of the last check
   SolverStatus status;
+  bool skips_when_far;  // the default schedule (check_every 0)
+  bool far;             // the last check was far from the tolerance: the next is the last
 
   ConvergenceRule() = default;  // trivial, so that a kernel can keep one in shared memory
   explicit ConvergenceRule(const SolverSettings<T>& s)
@@ -97,19 +105,26 @@ struct ConvergenceRule {
         check_every(s.check_every != 0 ? s.check_every : default_check_every),
         max_iterations(s.max_iterations),
         divergence_checks(s.divergence_checks),
-        previous(std::numeric_limits<T>::infinity()),
-        smallest(std::numeric_limits<T>::infinity()),
-        growing(0),
-        iterations(0),
-        status(SolverStatus::converged) {}
+        skips_when_far(s.check_every == 0) {
+    restart();
+  }
+
+  // No check taken yet, as a solve's attempt begins.
+  GPUSOLVE_HD void restart() {
+    previous = smallest = std::numeric_limits<T>::infinity();
+    growing = 0, iterations = 0;
+    status = SolverStatus::converged;
+    far = false;
+  }
 
   // Whether iteration `it` (1-based) measures the residual: every check_every
-  // iterations and always the last one, so the final residual is known.
-  GPUSOLVE_HD bool checks(std::size_t it) const { return it % check_every == 0 || it == max_iterations; }
+  // iterations (after a far check, none but the last) and always the last one,
+  // so the final residual is known.
+  GPUSOLVE_HD bool checks(std::size_t it) const { return next_check(it) == it; }
   // The first iteration from `it` on that checks.
   GPUSOLVE_HD std::size_t next_check(std::size_t it) const {
     const std::size_t k = (it + check_every - 1) / check_every * check_every;
-    return k < max_iterations ? k : max_iterations;
+    return k < max_iterations && !far ? k : max_iterations;
   }
   // After stop() returned true: whether the attempt diverged.
   GPUSOLVE_HD bool diverged() const { return status == SolverStatus::diverged; }
@@ -130,6 +145,7 @@ struct ConvergenceRule {
     if (divergence_checks != 0 && growing >= divergence_checks && residual > divergence_growth * smallest)
       return finish(SolverStatus::diverged);
     if (it >= max_iterations) return finish(SolverStatus::max_iterations);
+    far = skips_when_far && residual > T(far_from_tolerance) * tolerance;
     return false;
   }
 
@@ -166,12 +182,17 @@ class ConvergenceMonitor {
 };
 
 // Records in `stats` the checks a ConvergenceRule made on the device: their
-// residuals in order, the iterations they fell after, and its verdict.
+// residuals in order, the iterations they fell after (the rule taken through
+// them again), and its verdict.
 template <class T>
 void record_checks(const ConvergenceRule<T>& verdict, std::vector<T> residuals, SolverStats<T>& stats) {
   stats.checked_at.clear();
-  for (std::size_t k = 0, it = 0; k < residuals.size(); ++k)
-    stats.checked_at.push_back(it = verdict.next_check(it + 1));
+  ConvergenceRule<T> again = verdict;
+  again.restart();
+  for (std::size_t k = 0, it = 0; k < residuals.size(); ++k) {
+    stats.checked_at.push_back(it = again.next_check(it + 1));
+    again.stop(it, residuals[k]);
+  }
   stats.residuals = std::move(residuals);
   stats.iterations = verdict.iterations;
   stats.status = verdict.status;
