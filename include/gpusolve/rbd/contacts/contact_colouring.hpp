@@ -122,16 +122,16 @@ struct PickColour {
 // What a colouring depends on at contact i: its bodies, each with its top bit
 // set where the body moves (a build keeps them, the next compares them).
 template <class BV>
-GPUSOLVE_HD std::uint32_t colouring_end(const BV& b, std::uint32_t k) {
+GPUSOLVE_HD std::uint32_t body_and_motion(const BV& b, std::uint32_t k) {
   return b.moving(k) ? k | 0x80000000u : k;
 }
 template <class BV, class CV>
 struct KeepPairs {
   BV b;
   CV c;
-  std::uint32_t *a_ends, *b_ends;
+  std::uint32_t *kept_a, *kept_b;
   GPUSOLVE_HD void operator()(std::size_t i) const {
-    a_ends[i] = colouring_end(b, c.a[i]), b_ends[i] = colouring_end(b, c.b[i]);
+    kept_a[i] = body_and_motion(b, c.a[i]), kept_b[i] = body_and_motion(b, c.b[i]);
   }
 };
 // Sets *changed where contact i's ends differ from those a build kept.
@@ -139,10 +139,10 @@ template <class BV, class CV>
 struct ComparePairs {
   BV b;
   CV c;
-  const std::uint32_t *a_ends, *b_ends;
+  const std::uint32_t *kept_a, *kept_b;
   std::uint32_t* changed;
   GPUSOLVE_HD void operator()(std::size_t i) const {
-    if (a_ends[i] != colouring_end(b, c.a[i]) || b_ends[i] != colouring_end(b, c.b[i]))
+    if (kept_a[i] != body_and_motion(b, c.a[i]) || kept_b[i] != body_and_motion(b, c.b[i]))
       cuda::atomic_ref<std::uint32_t, cuda::thread_scope_device>(*changed).store(1u, cuda::std::memory_order_relaxed);
   }
 };
@@ -275,17 +275,17 @@ class ContactColouring {
   bool same_pairs(const BV& b, const CV& c, stream_t stream) {
     if (c.size() != kept_count_ || b.size() > 0x80000000u) return false;
     changed_.fill(0u, stream);
-    launch(Device{}, c.size(), detail::ComparePairs<BV, CV>{b, c, a_ends_.data(), b_ends_.data(), changed_.data()},
+    launch(Device{}, c.size(), detail::ComparePairs<BV, CV>{b, c, kept_a_.data(), kept_b_.data(), changed_.data()},
            stream);
     return detail::read_back<Device>(changed_.data(), 0, stream) == 0;
   }
   template <class BV, class CV>
   void keep_pairs(const BV& b, const CV& c, stream_t stream) {
     if (b.size() > 0x80000000u) return;
-    gpusolve::detail::ensure_size(a_ends_, c.size());
-    gpusolve::detail::ensure_size(b_ends_, c.size());
+    gpusolve::detail::ensure_size(kept_a_, c.size());
+    gpusolve::detail::ensure_size(kept_b_, c.size());
     if (changed_.size_x() == 0) changed_.resize(1);
-    launch(Device{}, c.size(), detail::KeepPairs<BV, CV>{b, c, a_ends_.data(), b_ends_.data()}, stream);
+    launch(Device{}, c.size(), detail::KeepPairs<BV, CV>{b, c, kept_a_.data(), kept_b_.data()}, stream);
     kept_count_ = c.size();
   }
 
@@ -341,7 +341,7 @@ class ContactColouring {
   ContactGrouping<Device> grouping_;
   detail::DeviceAlgorithms<Device> algorithms_;
   U32 colour_, sorted_colour_, order_, ends_, bounds_, sequence_;
-  U32 a_ends_, b_ends_, changed_;  // the last build's pairs (KeepPairs), and what compares them
+  U32 kept_a_, kept_b_, changed_;  // the last build's pairs (KeepPairs), and what compares them
   VectorD1<detail::ColouringCounters, device_is<Device>> counters_;  // one, read back in one copy per batch
   VectorD1<std::uint32_t, device_is<device::cpu>> bounds_host_;
   VectorD1<std::uint64_t, device_is<Device>> best_;
