@@ -81,6 +81,26 @@ TEST_CASE("contact colouring: no colour holds two contacts of one moving body, a
   for (std::size_t p = 0; p < c.size(); ++p) REQUIRE(col.order()[p] == first[p]);
 }
 
+TEST_CASE("the colouring's sort: pairs ordered by key, equal keys kept in their order", "[rbd_methods]") {
+  // Keys as a colouring leaves them: colours below 9, and a pair's later points marked `follows`.
+  const std::size_t n = 200;
+  std::vector<std::uint32_t> keys(n), values(n), keys_out(n), values_out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    keys[i] = i % 7 == 3 ? rbd::detail::follows : std::uint32_t((i * 5 + i / 11) % 9);
+    values[i] = std::uint32_t(i);
+  }
+  rbd::detail::DeviceAlgorithms<device::cpu> algorithms;
+  algorithms.stable_sort_pairs(keys.data(), keys_out.data(), values.data(), values_out.data(), n, 32, stream_t{});
+  for (std::size_t i = 0; i < n; ++i) REQUIRE(keys_out[i] == keys[values_out[i]]);  // each pair moved whole
+  for (std::size_t i = 1; i < n; ++i) {
+    REQUIRE(keys_out[i - 1] <= keys_out[i]);
+    if (keys_out[i - 1] == keys_out[i]) REQUIRE(values_out[i - 1] < values_out[i]);  // stable
+  }
+  std::vector<std::uint32_t> seen(values_out);
+  std::sort(seen.begin(), seen.end());
+  for (std::size_t i = 0; i < n; ++i) REQUIRE(seen[i] == i);  // every pair once
+}
+
 TEST_CASE("contact colouring colours body pairs: a box pair's points share one colour, and a sweep hands one thread the whole pair",
           "[rbd_methods][shapes]") {
   BodySet<double> set = gpusolve::bench::box_pyramid<double>(8);  // 36 boxes on a floor, four points per face
