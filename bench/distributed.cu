@@ -2,13 +2,14 @@
 // many ranks mpirun starts, on the CPU backend or with every rank's World on
 // the one GPU (ranks sharing it):
 //   mpirun -np R gpusolve_bench_distributed [--backend cpu|gpu] [--mode defaults|jacobi10|gauss-seidel]
-//     [--transport mpi|nccl] [--n 100000 | --per-rank N] [--steps 300] [--csv FILE]
+//     [--transport mpi|nccl] [--n 100000 | --per-rank N] [--steps 300] [--skin D] [--csv FILE]
 // --mode: the library's defaults (APGD), projected Jacobi at exactly 10 iterations, or
 // coloured Gauss-Seidel at the defaults. --per-rank N: weak scaling, a pile of N spheres per
 // rank (N x R in all). On the GPU backend the ranks of a node take its GPUs in turn (use_rank_gpu).
 // --transport: the solve's sums through host memory with MPI (the default), or from GPU to GPU
 // with NCCL (a GPU per rank, a build that found NCCL); NCCL queues its exchanges on the solve's
 // stream, so `exchange` is then the time to queue them and the solve's time holds the rest.
+// --skin D: DistributedWorld::set_skin (m; the library's default where not given).
 // Measured over the last third of the steps, medians, each phase the slowest
 // rank's: the whole step (host clock, every rank waits for the slowest at the
 // step's end); `bodies`, bodies moved between ranks, the Worlds rebuilt (or
@@ -47,15 +48,19 @@ constexpr const char* phase_names[phases] = {"step", "bodies", "detection", "sol
 struct Result {
   double ms[phases] = {}, penetration = 0;
   long rebuilds = 0;  // in the measured steps
+  T skin = 0;         // the world's
   rbd::DistributedStats<T> last;
 };
 
 template <class Device, class Method>
-Result run(const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T>& s, rbd::RankTransport transport) {
+Result run(const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T>& s, rbd::RankTransport transport,
+           T skin) {
   rbd::DistributedWorld<Device, T, rbd::ConeFriction, Method> world(MPI_COMM_WORLD, scene, s, std::nullopt, transport);
   world.set_phase_timing(true);
+  if (skin >= 0) world.set_skin(skin);
   std::vector<double> measured[phases];
   Result r;
+  r.skin = world.skin();
   for (long k = 0; k < steps; ++k) {
     MPI_Barrier(MPI_COMM_WORLD);
     const auto start = std::chrono::steady_clock::now();
@@ -82,10 +87,10 @@ Result run(const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T
 // The run at `mode`: APGD (the defaults), Jacobi (jacobi10) or coloured Gauss-Seidel.
 template <class Device>
 Result run_mode(const std::string& mode, const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T>& s,
-                rbd::RankTransport transport) {
-  if (mode == "jacobi10") return run<Device, rbd::Jacobi<rbd::Gather>>(scene, steps, s, transport);
-  if (mode == "gauss-seidel") return run<Device, rbd::ColouredGaussSeidel>(scene, steps, s, transport);
-  return run<Device, rbd::AcceleratedJacobi<rbd::Gather>>(scene, steps, s, transport);
+                rbd::RankTransport transport, T skin) {
+  if (mode == "jacobi10") return run<Device, rbd::Jacobi<rbd::Gather>>(scene, steps, s, transport, skin);
+  if (mode == "gauss-seidel") return run<Device, rbd::ColouredGaussSeidel>(scene, steps, s, transport, skin);
+  return run<Device, rbd::AcceleratedJacobi<rbd::Gather>>(scene, steps, s, transport, skin);
 }
 
 }  // namespace
@@ -95,6 +100,7 @@ int main(int argc, char** argv) {
   std::size_t n = 100000;
   long steps = 300;
   std::size_t per_rank = 0;
+  T skin = -1;  // the library's default
   std::string csv, backend = "cpu", mode = "defaults", transport = "mpi";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
@@ -104,6 +110,7 @@ int main(int argc, char** argv) {
     else if (a == "--per-rank") per_rank = std::stoul(argv[i + 1]);
     else if (a == "--n") n = std::stoul(argv[i + 1]);
     else if (a == "--steps") steps = std::stol(argv[i + 1]);
+    else if (a == "--skin") skin = std::stof(argv[i + 1]);
     else if (a == "--csv") csv = argv[i + 1];
   }
   int rank = 0, ranks = 1;
@@ -129,7 +136,8 @@ int main(int argc, char** argv) {
   }
   Result r;
   try {
-    r = backend == "gpu" ? run_mode<device::gpu>(mode, scene, steps, s, over) : run_mode<device::cpu>(mode, scene, steps, s, over);
+    r = backend == "gpu" ? run_mode<device::gpu>(mode, scene, steps, s, over, skin)
+                         : run_mode<device::cpu>(mode, scene, steps, s, over, skin);
   } catch (const gpusolve::Error& e) {  // every rank throws alike
     if (rank == 0) std::fprintf(stderr, "gpusolve_bench_distributed: %s\n", e.what());
     MPI_Finalize();
@@ -139,9 +147,9 @@ int main(int argc, char** argv) {
     const int threads = std::getenv("OMP_NUM_THREADS") ? std::atoi(std::getenv("OMP_NUM_THREADS")) : 0;
     std::printf("%s%s%s, %s over %s, ranks %d (OMP_NUM_THREADS %d), %zu spheres, %ld steps: %.2f ms/step (bodies %.2f, detection "
                 "%.2f, solve %.2f, exchange %.2f, integration %.2f), contacts %zu, shadows %zu, penetration %.4f%%, "
-                "rebuilt before %ld of the %ld measured steps\n",
+                "rebuilt before %ld of the %ld measured steps (skin %.3g)\n",
                 backend.c_str(), gpu.empty() ? "" : " ", gpu.c_str(), mode.c_str(), transport.c_str(), ranks, threads, n, steps, r.ms[0], r.ms[1], r.ms[2], r.ms[3], r.ms[4], r.ms[5],
-                r.last.contacts, r.last.shadows, 100 * r.penetration, r.rebuilds, steps / 3);
+                r.last.contacts, r.last.shadows, 100 * r.penetration, r.rebuilds, steps / 3, double(r.skin));
     if (!csv.empty()) {
       FILE* f = std::fopen(csv.c_str(), "a");
       if (f) {
@@ -149,12 +157,12 @@ int main(int argc, char** argv) {
         if (std::ftell(f) == 0) {
           std::fprintf(f, "backend,ranks,threads_per_rank,n,steps");
           for (const char* p : phase_names) std::fprintf(f, ",ms_%s", p);
-          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds,mode,gpu,per_rank,transport\n");
+          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds,mode,gpu,per_rank,transport,skin\n");
         }
         std::fprintf(f, "%s,%d,%d,%zu,%ld", backend.c_str(), ranks, threads, n, steps);
         for (double x : r.ms) std::fprintf(f, ",%.4f", x);
-        std::fprintf(f, ",%zu,%zu,%.6g,%ld,%s,%s,%zu,%s\n", r.last.contacts, r.last.shadows, r.penetration, r.rebuilds,
-                     mode.c_str(), gpu.c_str(), per_rank, transport.c_str());
+        std::fprintf(f, ",%zu,%zu,%.6g,%ld,%s,%s,%zu,%s,%.6g\n", r.last.contacts, r.last.shadows, r.penetration,
+                     r.rebuilds, mode.c_str(), gpu.c_str(), per_rank, transport.c_str(), double(r.skin));
         std::fclose(f);
       }
     }

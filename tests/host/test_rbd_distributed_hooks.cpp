@@ -190,14 +190,14 @@ TEST_CASE("distributed hooks: the check of a rank's own bodies finds those that 
   set[b].v = {-1, 0, 0};
   set[c].v = {5, 5, 5};
   const std::vector<std::uint64_t> shadowed{0, 1, 0, 0};  // a: held by rank 0
-  // The check of the bodies in a World, after `change` to them there.
-  auto check = [&](const std::vector<std::uint64_t>& at, auto&& change) {
+  // The check of the bodies in a World, after `change` to them there, with a skin.
+  auto check = [&](const std::vector<std::uint64_t>& at, auto&& change, double skin = 0) {
     BodySet<double> copy = set;
     World<device::cpu, double> w(copy, SolverSettings<double>{});
     change(w.bodies());
     OwnedBodiesCheck<device::cpu, double> owned;
     owned.shadowed_at(at);
-    return owned.run(w.bodies().view(), grid, rank, reach);
+    return owned.run(w.bodies().view(), grid, rank, reach, skin);
   };
   const auto as_is = [](auto&) {};
   const OwnedBodies here = check(shadowed, as_is);
@@ -208,14 +208,24 @@ TEST_CASE("distributed hooks: the check of a rank's own bodies finds those that 
   CHECK(here.momentum[2] == 0);
   // 1/2 m v^2 of both, and 1/2 (2/5 m r^2) w^2 of a.
   CHECK(here.kinetic_energy == Approx(0.5 * 2 * 5 + 0.5 * 0.4 * 2 * 0.25 * 9 + 0.5 * 1 * 1));
-  // A shadow due where there is none, or none where there is one.
-  CHECK(check({0, 1, 1, 0}, as_is).to_move == 1);
+  // A shadow due where there is none moves it; one held where none is due
+  // stays (its contacts are still found once, by the lower owner).
   CHECK(check({0, 0, 0, 0}, as_is).to_move == 1);
+  CHECK(check({0, 1, 1, 0}, as_is).to_move == 0);
   // A body that crossed into rank 0's cell (its shadow bit as it would be
   // there: only the owner differs); one whose state is not finite.
   CHECK(check({0, 1, 1, 0}, [&](auto& bodies) { bodies.pos(b, 0) = 1.9; }).to_move == 1);
   CHECK(check(shadowed, [&](auto& bodies) { bodies.w(b, 1) = std::nan(""); }).to_move == 1);
   CHECK(check(shadowed, [&](auto& bodies) { bodies.w(c, 1) = std::nan(""); }).to_move == 0);  // rank 0 checks its own
+  // With a skin of 0.2 a body stays until it is more than 0.2 past its cell
+  // (b held by rank 0, as a skin's wider shadows would have it) ...
+  CHECK(check({0, 1, 1, 0}, [&](auto& bodies) { bodies.pos(b, 0) = 1.9; }, 0.2).to_move == 0);
+  CHECK(check({0, 1, 1, 0}, [&](auto& bodies) { bodies.pos(b, 0) = 1.7; }, 0.2).to_move == 1);
+  // ... and until it comes within its reach and the skin of a rank without
+  // its shadow: b at 1.25 from cell 0 needs one there (0.5 + 0.6 + 0.2).
+  CHECK(check(shadowed, [&](auto& bodies) { bodies.pos(b, 0) = 3.25; }, 0.2).to_move == 1);
+  CHECK(check(shadowed, [&](auto& bodies) { bodies.pos(b, 0) = 3.25; }).to_move == 0);
+  CHECK(check({0, 1, 1, 0}, [&](auto& bodies) { bodies.pos(b, 0) = 3.25; }, 0.2).to_move == 0);
 }
 
 TEST_CASE("distributed hooks: a rank's neighbourhood holds every lower rank within reach, at any number of ranks",

@@ -63,14 +63,16 @@ struct DistributedStats {
 
 // Each rank owns the moving bodies whose centre lies in its cell of a
 // RankGrid over the scene, and holds shadow copies (BodyStatus::shadow) of
-// the bodies that lower ranks own within contact reach of its cell; every
+// the bodies that higher ranks own within contact reach and twice the skin
+// (set_skin) of its cell; every
 // fixed body is on every rank. A contact is solved by the lowest rank among
 // its bodies' owners (a shadow meets only active bodies: collision_detection.hpp),
 // and in every solver iteration the shadows' velocity changes are summed to
 // their owners and the totals sent back (MpiBodyExchange); the residual
-// checks and the momentum's sums are reduced over the ranks. Before each
-// step, bodies that crossed into another cell move to its rank and the
-// shadows are sent again; whether any must is found where the bodies live
+// checks and the momentum's sums are reduced over the ranks. Once a body has
+// gone more than the skin past its cell, or towards a rank that holds no
+// shadow of it, the bodies move to the ranks whose cells hold their centres
+// and the shadows are sent again; whether any must is found where the bodies live
 // (OwnedBodiesCheck), so a step that moves none reads no body back. A rank's
 // bodies are kept in the order of their global ids, so every pair of bodies
 // meets in the roles it has in one World over the whole scene, and the warm
@@ -115,10 +117,11 @@ class DistributedWorld {
     std::vector<Placed> added = number(mine);
     agree_.run([&] { validate(added); });
     const std::vector<Placed> fixed_everywhere = gather_fixed(added);
-    const T largest = largest_bound(added);
-    reach_ = largest + settings.margin;
-    grid_.emplace(dims(), box ? box->first : span(added).first, box ? box->second : span(added).second,
-                  largest + reach_);
+    largest_ = largest_bound(added);
+    reach_ = largest_ + settings.margin;
+    skin_ = default_skin_share * largest_;
+    box_ = box ? *box : span(added);
+    make_grid();
     std::vector<Placed> owned;
     for (const Placed& p : added)
       if (p.body.status != fixed) owned.push_back(p);
@@ -135,8 +138,8 @@ class DistributedWorld {
   }
 
   // One step of the whole scene; every rank calls it. The ranks' Worlds are
-  // rebuilt only where a body changes cells or ranks that need its shadow,
-  // holds a state that is not finite (the rebuild's check names it on every
+  // rebuilt only where a body goes past its cell or towards a rank without
+  // its shadow by more than the skin (set_skin), holds a state that is not finite (the rebuild's check names it on every
   // rank), or was modified: otherwise every shadow has moved exactly as its
   // owner (the same velocity sums, the same integration). A rank that fails
   // inside a step (out of memory, a failed launch) raises the alarm
@@ -154,6 +157,28 @@ class DistributedWorld {
     for (const Placed& p : owned_) out.push_back({p.gid, p.body});
     return out;
   }
+
+  // How far (m) a body may go past its rank's cell, or towards a rank that
+  // holds no shadow of it, before the ranks' Worlds are rebuilt; shadows are
+  // sent that much farther on each side. A wider skin rebuilds less often and
+  // holds more shadows (docs/distributed.md); the default is
+  // default_skin_share of the largest moving body's bound. Every rank calls
+  // it with the same value (else, or for one not finite or negative, every
+  // rank throws InvalidArgumentError); the next step rebuilds.
+  static constexpr T default_skin_share = T(0.25);
+  void set_skin(T skin) {
+    int bad = !(skin >= T(0) && skin <= std::numeric_limits<T>::max());
+    alarm_.allreduce(&bad, 1, MPI_INT, MPI_LOR, comm_);
+    if (bad) throw InvalidArgumentError("gpusolve: DistributedWorld::set_skin: the skin must be finite and >= 0 on every rank");
+    T lo = skin, hi = skin;
+    alarm_.allreduce(&lo, 1, detail::mpi_type<T>(), MPI_MIN, comm_);
+    alarm_.allreduce(&hi, 1, detail::mpi_type<T>(), MPI_MAX, comm_);
+    if (lo != hi) throw InvalidArgumentError("gpusolve: DistributedWorld::set_skin: the ranks passed different skins");
+    skin_ = skin;
+    make_grid();
+    modified_ = true;
+  }
+  T skin() const { return skin_; }
 
   // Per-phase timing of each rank's World (World::set_phase_timing): the
   // steps' local.time_* figures.
@@ -207,7 +232,7 @@ class DistributedWorld {
     out.seconds_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - exchanged).count();
     out.seconds_exchange = exchange_->take_seconds();
     const auto back = std::chrono::steady_clock::now();
-    own_ = check_.run(world_->bodies().view(), *grid_, rank_, reach_);
+    own_ = check_.run(world_->bodies().view(), *grid_, rank_, reach_, skin_);
     out.seconds_bodies = std::chrono::duration<double>(exchanged - start).count() +
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - back).count();
     out.local = st;
@@ -290,6 +315,9 @@ class DistributedWorld {
       if (p.body.status == fixed) mine.push_back(p);
     return messages_.all_gather(mine);
   }
+
+  // The grid of ranks over box_, for queries as far as a body's shadows reach.
+  void make_grid() { grid_.emplace(dims(), box_.first, box_.second, largest_ + reach_ + 2 * skin_); }
 
   // The ranks along x and y (a pile is tall in z): MPI_Dims_create with z at 1.
   std::array<int, 3> dims() const {
@@ -459,9 +487,12 @@ class DistributedWorld {
     modified_ = false;
   }
 
-  // The lower ranks whose cells come within contact reach of body b, which
-  // hold its shadow, as bits over this rank's neighbourhood (RankGrid).
-  std::uint64_t shadow_ranks(const Body<T>& b) const { return grid_->ranks_within(b.pos, bound(b) + reach_, rank_); }
+  // The lower ranks whose cells come within contact reach of body b and twice
+  // the skin, which hold its shadow, as bits over this rank's neighbourhood
+  // (RankGrid): enough while b and its partners each stay within the skin.
+  std::uint64_t shadow_ranks(const Body<T>& b) const {
+    return grid_->ranks_within(b.pos, bound(b) + reach_ + 2 * skin_, rank_);
+  }
 
   // Whether any rank's bodies change before this step (a collective): a body
   // whose centre left its rank's cell, whose shadows are due on other ranks
@@ -499,7 +530,10 @@ class DistributedWorld {
   std::vector<std::uint64_t> gids_;    // of local_'s bodies
   std::vector<Placed> fixed_, owned_;  // owned_: this rank's moving bodies, by id
   std::optional<RankGrid<T>> grid_;
-  T reach_ = 0;  // a body is sent as a shadow to the cells within its bound plus this
+  std::pair<Vec, Vec> box_;  // the grid's
+  T largest_ = 0;  // the largest moving body's bound
+  T reach_ = 0;    // a body's bound plus this is the farthest it makes contacts
+  T skin_ = 0;     // set_skin
   std::unique_ptr<RankExchange<T>> exchange_;
   std::optional<LocalWorld> world_;
   OwnedBodiesCheck<Device, T> check_;

@@ -75,6 +75,9 @@ class RankGrid {
     return bits;
   }
 
+  // Whether point p lies within distance d of rank's cell (inside it: 0).
+  GPUSOLVE_HD bool near(const Vec& p, int rank, T d) const { return squared_distance(p, rank) <= d * d; }
+
   // The rank of bit `bit` of rank's neighbourhood (ranks_within).
   int neighbour(int rank, int bit) const {
     const int across[3] = {2 * span_[0] + 1, 2 * span_[1] + 1, 2 * span_[2] + 1};
