@@ -16,6 +16,7 @@
 
 #include "catch_compat.hpp"
 #include "gpusolve/rbd/distributed/owned_bodies_check.hpp"
+#include "test_local_method.hpp"
 #include "test_rbd_scenes.hpp"
 
 using namespace rbd_test;
@@ -116,6 +117,17 @@ TEST_CASE("distributed hooks: an exchange that adds nothing gives the solve with
   CHECK(gs.combines >= it_gs);  // one per sweep, and one for each warm start
   CHECK(gs.combines <= it_gs + 40);
   CHECK(gs.reductions > 0);
+  // Atomic's sums, where an exchange combines them, in iterations that are not
+  // rotated: the same solve but for the order of the atomic additions.
+  CountingExchange<double> atomic;
+  const auto [x_atomic, it_atomic] = run(Jacobi<Atomic>{}, false, none);
+  const auto [y_atomic, jt_atomic] = run(Jacobi<Atomic>{}, true, atomic);
+  REQUIRE(y_atomic.size() == x_atomic.size());
+  for (std::size_t i = 0; i < x_atomic.size(); ++i) CHECK(y_atomic[i] == Approx(x_atomic[i]).margin(1e-12));
+  CHECK(jt_atomic == it_atomic);
+  CHECK(atomic.combines >= it_atomic);
+  CHECK(atomic.combines <= it_atomic + 40);
+  CHECK(none.combines == 0);
   // A rank without contacts still takes part in every exchange of a solve.
   BodySet<double> alone;
   alone.add_sphere({0, 0, 5}, 0.5, 1.0);
@@ -132,9 +144,10 @@ TEST_CASE("distributed hooks: an exchange that adds nothing gives the solve with
 TEST_CASE("distributed hooks: a method that does not run distributed says so", "[rbd_distributed]") {
   auto set = small_pile();
   CountingExchange<double> ex;
-  World<device::cpu, double, ConeFriction, Jacobi<Atomic>> atomic(set, SolverSettings<double>{});
-  CHECK_THROWS_AS(atomic.set_exchange(&ex), UnsupportedError);
-  atomic.set_exchange(nullptr);  // none is always fine
+  World<device::cpu, double, ConeFriction, LocalJacobi> local(set, SolverSettings<double>{});
+  CHECK_THROWS_AS(local.set_exchange(&ex), UnsupportedError);
+  local.set_exchange(nullptr);  // none is always fine
+  CHECK(local.step().solver.contacts > 0);
 }
 
 TEST_CASE("distributed hooks: remembered contacts, renumbered, keep the warm start", "[rbd_distributed]") {

@@ -150,8 +150,8 @@ class World {
   // Runs the solves distributed (rbd/distributed/ sets it): the bodies' sums
   // and every reduction of the solver go through `exchange` (nullptr: none).
   // Throws UnsupportedError naming the method where it does not run
-  // distributed (solves_distributed: the Jacobi family with Gather or UpdateCache,
-  // substepping over it, AcceleratedCG and coloured Gauss-Seidel).
+  // distributed (solves_distributed: every method of the library's does; a
+  // solver of one's own needs set_exchange).
   void set_exchange(BodyExchange<T>* exchange);
   bool distributed() const { return distributed_; }
   // The contacts the last step remembered for the next one's warm start, on
@@ -496,8 +496,8 @@ void World<Device, T, Model, Method, Shapes>::set_exchange(BodyExchange<T>* exch
     distributed_ = exchange != nullptr;
   } else if (exchange != nullptr)
     throw UnsupportedError(std::string("gpusolve: World::set_exchange: the method '") + Method::name +
-                           "' does not run distributed (jacobi and apgd with the Gather or UpdateCache sums do, "
-                           "substepping over them, apgd-cg and gauss-seidel)");
+                           "' does not run distributed (its solver has no set_exchange; every method of the "
+                           "library's has)");
 }
 
 template <class Device, class T, class Model, class Method, ShapeMask Shapes>

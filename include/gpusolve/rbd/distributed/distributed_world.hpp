@@ -83,8 +83,7 @@ struct DistributedStats {
 // share a GPU); the bodies that change ranks and the solve's sums travel
 // through host memory (MpiBodyExchange), or with RankTransport::nccl the sums
 // from GPU to GPU (NcclBodyExchange). Methods that run distributed: World's
-// solves_distributed (the Jacobi family with Gather or UpdateCache sums,
-// substepping over them, AcceleratedCG, coloured Gauss-Seidel). Every rank passes the same settings, and
+// solves_distributed (every method of the library's). Every rank passes the same settings, and
 // a BodySet with the same materials and compound types (a compound's parts are
 // found by index on whichever rank holds it); the counts are checked. A rank that throws (a body
 // that is not valid or not finite, named by its global id) makes every rank

@@ -205,13 +205,42 @@ struct AtomicToBodies {
   }
 };
 
+// A distributed solve's first half of AtomicToBodies: body k's sum into row
+// k of `out` (dv, then dw) for BodyExchange::combine, the sum zeroed; the
+// combined sums are then added by AddBodySums.
+template <class T>
+struct TakePackedSums {
+  PackedSums<T> sums;   // sum 0
+  VectorD2View<T> out;  // bodies x 6
+  GPUSOLVE_HD void operator()(std::size_t k) const {
+    T x[6];
+    sums.at(0, k).load(x);
+    for (std::size_t c = 0; c < 6; ++c) out(k, c) = x[c];
+    sums.at(0, k).zero();
+  }
+};
+
 template <class BV, class T, class Iterate>
 struct AtomicApply {
-  AtomicToBodies<BV, T, Iterate> to_bodies;
+  using ToBodies = AtomicToBodies<BV, T, Iterate>;
+  ToBodies to_bodies;
   GPUSOLVE_EXEC_CHECK_DISABLE
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
+    if constexpr (may_exchange<E>::value)
+      if (e.exchange != nullptr) return combined(e);
     e.each(to_bodies.b.size(), to_bodies);
+  }
+  // A distributed solve: the sums of this rank's contacts, combined over the
+  // ranks that hold each body (in the exchange's store), then added.
+  template <class E>
+  void combined(const E& e) const {
+    const std::size_t bodies = to_bodies.b.size();
+    const VectorD2View<T> sums = e.exchange->sums(bodies);
+    e.each(bodies, TakePackedSums<T>{to_bodies.sums, sums});
+    e.sync();
+    e.combine(bodies);
+    e.each(bodies, AddBodySums<ToBodies, T>{to_bodies, sums});
   }
 };
 

@@ -229,16 +229,17 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
   // A distributed solve (rbd/distributed/): the bodies' sums and every
   // reduction of an iteration are shared over the ranks through `exchange`
   // (nullptr: none), as launches. Each rank's contacts are its own; a rank
-  // without contacts still takes part in every exchange. Not with Atomic,
-  // whose sums have no per-body store to combine.
-  template <class S = Strategy, std::enable_if_t<!std::is_same_v<S, Atomic>, int> = 0>
+  // without contacts still takes part in every exchange. Atomic without
+  // momentum then runs its iterations unrotated: each iteration's sums are
+  // combined before any velocity moves.
   void set_exchange(BodyExchange<T>* exchange) {
     run_.set_exchange(exchange);
   }
 
  private:
   using Sink = decltype(std::declval<Accumulator<Strategy, Device, T>&>().sink());
-  // Atomic without momentum runs an iteration as one phase (RotatedJacobiIteration).
+  // Atomic without momentum runs an iteration as one phase (RotatedJacobiIteration),
+  // unless distributed.
   static constexpr bool rotated = std::is_same_v<Strategy, Atomic> && std::is_same_v<MomentumTag, NoMomentum>;
 
   // Queues the solve (solve(), solve_queued()) in its stages: prepare, then
@@ -259,8 +260,13 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
     if (!persistent) prepared(launched(stream));
     stats.reduction_passes = acc_.passes();
     prepare_iterations(b, c, s, width, stream);
-    const auto iteration = iteration_program(b, c, s);
     if (!from_x) contacts.x.fill(T(0), stream);
+    if constexpr (rotated)
+      if (run_.exchange() != nullptr) {  // distributed, so launched
+        solve_launched(b, c, contacts, s, prepared, iteration_program<false>(b, c, s), from_x, stream, stats);
+        return false;
+      }
+    const auto iteration = iteration_program(b, c, s);
     if (persistent) return solve_persistent(b, c, s, prepared, iteration, from_x, width, slot, deferred, stream, stats);
     solve_launched(b, c, contacts, s, prepared, iteration, from_x, stream, stats);
     return false;
@@ -314,10 +320,12 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
                                                                  from_x && first_attempt};
   }
 
-  // One iteration as a program (JacobiIteration, or RotatedJacobiIteration):
-  // every attempt iterates at the first attempt's omega; a retry's smaller
-  // omega scales the inverse blocks instead (InverseBlocks::scale), so that
-  // the persistent kernel retries with the iteration it holds.
+  // One iteration as a program (JacobiIteration, or RotatedJacobiIteration
+  // where Rotated): every attempt iterates at the first attempt's omega; a
+  // retry's smaller omega scales the inverse blocks instead
+  // (InverseBlocks::scale), so that the persistent kernel retries with the
+  // iteration it holds.
+  template <bool Rotated = rotated>
   auto iteration_program(const BV& b, const CV& c, const SolverSettings<T>& s) {
     const T omega = omega_of<JacobiSolver>(s);
     const VectorD2View<T> rhs{};  // JacobiContact keeps each error in registers: no store
@@ -332,7 +340,7 @@ class JacobiSolver : public ContactSolverBase<Device, T, Model> {
       measuring.resolve.measure = true;
       return std::pair<Contact, Contact>{plain, measuring};
     };
-    if constexpr (rotated) {
+    if constexpr (Rotated) {
       const auto r = acc_.rotation(b);
       const auto [plain, measuring] = contact_pair(r.sink(1), r.iterate(1));
       return detail::RotatedJacobiIteration<std::decay_t<decltype(plain)>, decltype(terms), T>{
