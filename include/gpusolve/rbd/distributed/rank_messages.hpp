@@ -4,17 +4,51 @@
 #pragma once
 
 #include <algorithm>
+#include <climits>
 #include <cstddef>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include <mpi.h>
 
+#include "gpusolve/core/error.hpp"
 #include "gpusolve/rbd/distributed/rank_alarm.hpp"
 #include "gpusolve/rbd/distributed/rank_communicator.hpp"
 
 namespace gpusolve::rbd {
+
+namespace detail {
+
+// MPI's type for one record of E, its bytes as one unit, so that MPI's int
+// counts and displacements count records, not bytes: a message may pass
+// 2^31 bytes (15 million bodies), as the ranks of a billion-body scene send.
+template <class E>
+class RecordType {
+ public:
+  RecordType() {
+    MPI_Type_contiguous(int(sizeof(E)), MPI_BYTE, &type_);
+    MPI_Type_commit(&type_);
+  }
+  ~RecordType() { MPI_Type_free(&type_); }
+  RecordType(const RecordType&) = delete;
+  RecordType& operator=(const RecordType&) = delete;
+  operator MPI_Datatype() const { return type_; }
+
+ private:
+  MPI_Datatype type_;
+};
+
+// n records as MPI's count, or UnsupportedError where MPI's int cannot hold it.
+inline int record_count(std::size_t n) {
+  if (n > std::size_t(INT_MAX))
+    throw UnsupportedError("gpusolve: RankMessages: " + std::to_string(n) +
+                           " records in one message or gather, more than MPI's counts hold (2^31 - 1)");
+  return int(n);
+}
+
+}  // namespace detail
 
 class RankMessages {
  public:
@@ -36,11 +70,13 @@ class RankMessages {
     // Two rounds in a row can overlap (a rank may send the next round's
     // messages before another has seen this round's barrier end), never three.
     const int tag = 1 + int(rounds_++ % 2);
+    const detail::RecordType<E> record;
+    for (const std::vector<E>& message : to) detail::record_count(message.size());  // before any is sent
     std::vector<MPI_Request> sends;
     for (int r = 0; r < ranks_; ++r)
       if (!to[r].empty()) {
         sends.emplace_back();
-        MPI_Issend(to[r].data(), int(to[r].size() * sizeof(E)), MPI_BYTE, r, tag, comm_, &sends.back());
+        MPI_Issend(to[r].data(), detail::record_count(to[r].size()), record, r, tag, comm_, &sends.back());
       }
     std::vector<std::pair<int, std::vector<E>>> came;  // (rank, records)
     MPI_Request barrier = MPI_REQUEST_NULL;
@@ -50,10 +86,10 @@ class RankMessages {
       MPI_Status status;
       MPI_Iprobe(MPI_ANY_SOURCE, tag, comm_, &found, &status);
       if (found) {
-        int bytes = 0;
-        MPI_Get_count(&status, MPI_BYTE, &bytes);
-        came.emplace_back(status.MPI_SOURCE, std::vector<E>(std::size_t(bytes) / sizeof(E)));
-        MPI_Recv(came.back().second.data(), bytes, MPI_BYTE, status.MPI_SOURCE, tag, comm_, MPI_STATUS_IGNORE);
+        int records = 0;
+        MPI_Get_count(&status, record, &records);
+        came.emplace_back(status.MPI_SOURCE, std::vector<E>(std::size_t(records)));
+        MPI_Recv(came.back().second.data(), records, record, status.MPI_SOURCE, tag, comm_, MPI_STATUS_IGNORE);
       }
       int complete = 0;
       if (in_barrier) {
@@ -78,11 +114,12 @@ class RankMessages {
   template <class E>
   std::vector<E> all_gather(const std::vector<E>& mine) const {
     static_assert(std::is_trivially_copyable_v<E>);
-    const int bytes = int(mine.size() * sizeof(E));
+    const detail::RecordType<E> record;
+    const int count = detail::record_count(mine.size());
     std::vector<int> counts(ranks_), at(ranks_);
-    MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
-    std::vector<E> all(offsets(counts, at) / sizeof(E));
-    MPI_Allgatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), at.data(), MPI_BYTE, comm_);
+    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+    std::vector<E> all(offsets(counts, at));
+    MPI_Allgatherv(mine.data(), count, record, all.data(), counts.data(), at.data(), record, comm_);
     return all;
   }
 
@@ -90,21 +127,23 @@ class RankMessages {
   template <class E>
   std::vector<E> gather_to(const std::vector<E>& mine, int root) const {
     static_assert(std::is_trivially_copyable_v<E>);
-    const int bytes = int(mine.size() * sizeof(E));
+    const detail::RecordType<E> record;
+    const int count = detail::record_count(mine.size());
     std::vector<int> counts(ranks_), at(ranks_);
-    MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
+    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);  // every rank checks the displacements
     const std::size_t total = offsets(counts, at);
-    std::vector<E> all(rank_ == root ? total / sizeof(E) : 0);
-    MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), at.data(), MPI_BYTE, root, comm_);
+    std::vector<E> all(rank_ == root ? total : 0);
+    MPI_Gatherv(mine.data(), count, record, all.data(), counts.data(), at.data(), record, root, comm_);
     return all;
   }
 
  private:
-  // Each rank's offset from its count; returns the total.
+  // Each rank's offset (in records) from its count; returns the total. A
+  // displacement past MPI's int is refused (detail::record_count).
   std::size_t offsets(const std::vector<int>& counts, std::vector<int>& at) const {
-    int total = 0;
-    for (int r = 0; r < ranks_; ++r) at[r] = total, total += counts[r];
-    return std::size_t(total);
+    std::size_t total = 0;
+    for (int r = 0; r < ranks_; ++r) at[r] = detail::record_count(total), total += std::size_t(counts[r]);
+    return total;
   }
 
   RankCommunicator comm_;
