@@ -2,7 +2,7 @@
 // many ranks mpirun starts, on the CPU backend or with every rank's World on
 // the one GPU (ranks sharing it):
 //   mpirun -np R gpusolve_bench_distributed [--backend cpu|gpu] [--mode defaults|jacobi10|gauss-seidel]
-//     [--transport mpi|nccl] [--n 100000 | --per-rank N] [--steps 300] [--skin D] [--csv FILE]
+//     [--transport mpi|nccl] [--n 100000 | --per-rank N] [--steps 300] [--skin D] [--spread] [--csv FILE]
 // --mode: the library's defaults (APGD), projected Jacobi at exactly 10 iterations, or
 // coloured Gauss-Seidel at the defaults. --per-rank N: weak scaling, a pile of N spheres per
 // rank (N x R in all). On the GPU backend the ranks of a node take its GPUs in turn (use_rank_gpu).
@@ -10,6 +10,8 @@
 // with NCCL (a GPU per rank, a build that found NCCL); NCCL queues its exchanges on the solve's
 // stream, so `exchange` is then the time to queue them and the solve's time holds the rest.
 // --skin D: DistributedWorld::set_skin (m; the library's default where not given).
+// --spread: each rank adds its share of the pile's lattice (shared_pile_part), not rank 0
+// all of it: what a pile of hundreds of millions needs (rank 0 would hold it all at once).
 // Measured over the last third of the steps, medians, each phase the slowest
 // rank's: the whole step (host clock, every rank waits for the slowest at the
 // step's end); `bodies`, bodies moved between ranks, the Worlds rebuilt (or
@@ -101,24 +103,32 @@ int main(int argc, char** argv) {
   long steps = 300;
   std::size_t per_rank = 0;
   T skin = -1;  // the library's default
+  bool spread = false;
   std::string csv, backend = "cpu", mode = "defaults", transport = "mpi";
-  for (int i = 1; i + 1 < argc; i += 2) {
+  for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--backend") backend = argv[i + 1];
-    else if (a == "--mode") mode = argv[i + 1];
-    else if (a == "--transport") transport = argv[i + 1];
-    else if (a == "--per-rank") per_rank = std::stoul(argv[i + 1]);
-    else if (a == "--n") n = std::stoul(argv[i + 1]);
-    else if (a == "--steps") steps = std::stol(argv[i + 1]);
-    else if (a == "--skin") skin = std::stof(argv[i + 1]);
-    else if (a == "--csv") csv = argv[i + 1];
+    if (a == "--spread") {
+      spread = true;
+      continue;
+    }
+    if (i + 1 == argc) break;  // an option without its value
+    const char* v = argv[++i];
+    if (a == "--backend") backend = v;
+    else if (a == "--mode") mode = v;
+    else if (a == "--transport") transport = v;
+    else if (a == "--per-rank") per_rank = std::stoul(v);
+    else if (a == "--n") n = std::stoul(v);
+    else if (a == "--steps") steps = std::stol(v);
+    else if (a == "--skin") skin = std::stof(v);
+    else if (a == "--csv") csv = v;
   }
   int rank = 0, ranks = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   if (per_rank != 0) n = per_rank * std::size_t(ranks);
-  rbd::BodySet<T> scene = bench::shared_pile<T>(n);
-  if (rank != 0) scene.records().clear();  // rank 0 adds the scene; the world spreads it
+  rbd::BodySet<T> scene = spread ? bench::shared_pile_part<T>(n, std::size_t(rank), std::size_t(ranks))
+                                 : bench::shared_pile<T>(n);
+  if (!spread && rank != 0) scene.records().clear();  // rank 0 adds the scene; the world spreads it
   if ((mode != "defaults" && mode != "jacobi10" && mode != "gauss-seidel") || (transport != "mpi" && transport != "nccl")) {
     if (rank == 0)
       std::fprintf(stderr, "gpusolve_bench_distributed: --mode is defaults, jacobi10 or gauss-seidel, not '%s'; "
@@ -147,9 +157,10 @@ int main(int argc, char** argv) {
     const int threads = std::getenv("OMP_NUM_THREADS") ? std::atoi(std::getenv("OMP_NUM_THREADS")) : 0;
     std::printf("%s%s%s, %s over %s, ranks %d (OMP_NUM_THREADS %d), %zu spheres, %ld steps: %.2f ms/step (bodies %.2f, detection "
                 "%.2f, solve %.2f, exchange %.2f, integration %.2f), contacts %zu, shadows %zu, penetration %.4f%%, "
-                "rebuilt before %ld of the %ld measured steps (skin %.3g)\n",
+                "rebuilt before %ld of the %ld measured steps (skin %.3g%s)\n",
                 backend.c_str(), gpu.empty() ? "" : " ", gpu.c_str(), mode.c_str(), transport.c_str(), ranks, threads, n, steps, r.ms[0], r.ms[1], r.ms[2], r.ms[3], r.ms[4], r.ms[5],
-                r.last.contacts, r.last.shadows, 100 * r.penetration, r.rebuilds, steps / 3, double(r.skin));
+                r.last.contacts, r.last.shadows, 100 * r.penetration, r.rebuilds, steps / 3, double(r.skin),
+                spread ? ", each rank adding its share" : "");
     if (!csv.empty()) {
       FILE* f = std::fopen(csv.c_str(), "a");
       if (f) {
@@ -157,12 +168,12 @@ int main(int argc, char** argv) {
         if (std::ftell(f) == 0) {
           std::fprintf(f, "backend,ranks,threads_per_rank,n,steps");
           for (const char* p : phase_names) std::fprintf(f, ",ms_%s", p);
-          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds,mode,gpu,per_rank,transport,skin\n");
+          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds,mode,gpu,per_rank,transport,skin,spread\n");
         }
         std::fprintf(f, "%s,%d,%d,%zu,%ld", backend.c_str(), ranks, threads, n, steps);
         for (double x : r.ms) std::fprintf(f, ",%.4f", x);
-        std::fprintf(f, ",%zu,%zu,%.6g,%ld,%s,%s,%zu,%s,%.6g\n", r.last.contacts, r.last.shadows, r.penetration,
-                     r.rebuilds, mode.c_str(), gpu.c_str(), per_rank, transport.c_str(), double(r.skin));
+        std::fprintf(f, ",%zu,%zu,%.6g,%ld,%s,%s,%zu,%s,%.6g,%d\n", r.last.contacts, r.last.shadows, r.penetration,
+                     r.rebuilds, mode.c_str(), gpu.c_str(), per_rank, transport.c_str(), double(r.skin), int(spread));
         std::fclose(f);
       }
     }

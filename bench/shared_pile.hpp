@@ -59,6 +59,22 @@ rbd::BodySet<T> shared_pile(std::size_t n) {
   return set;
 }
 
+// Part `part` of `parts` of the shared sphere pile, for ranks that each add
+// their own: the planes on part 0, first, and the spheres of the lattice
+// sites [n part / parts, n (part + 1) / parts) with their jitters as above.
+// Numbered part by part, the parts hold the pile with its planes first.
+template <class T>
+rbd::BodySet<T> shared_pile_part(std::size_t n, std::size_t part, std::size_t parts) {
+  rbd::BodySet<T> set;
+  const std::size_t L = std::size_t(std::ceil(std::cbrt(double(n)) - 1e-9));
+  if (part == 0) add_open_box(set, L, 2.1);
+  const std::size_t lo = n * part / parts, hi = n * (part + 1) / parts;
+  jittered_lattice(n, 2.1, 1.1, [&](std::size_t i, const std::array<double, 3>& c) {
+    if (i >= lo && i < hi) set.add_sphere({T(c[0]), T(c[1]), T(c[2])}, T(1), T(1));
+  });
+  return set;
+}
+
 // A random orientation: four draws of `normal` (0, 1) on `gen`, normalised.
 template <class T>
 std::array<T, 4> random_turn(std::mt19937& gen, std::normal_distribution<double>& normal) {
