@@ -217,6 +217,12 @@ TEST_CASE("distributed: 72 ranks step a pile of spheres as one World does", "[.]
   scene.add_sphere({3, 3, 12}, 4.0, 1.0);
   CHECK_THROWS_AS((DistributedWorld<TestDevice, double>(MPI_COMM_WORLD, on_rank_zero(scene), SolverSettings<double>{})),
                   UnsupportedError);
+  // So is a skin that wide, and the world steps on with the skin it had.
+  DistributedWorld<TestDevice, double> dist(MPI_COMM_WORLD, on_rank_zero(sphere_pile()), SolverSettings<double>{});
+  const double kept = dist.skin();
+  CHECK_THROWS_AS(dist.set_skin(8.0), UnsupportedError);
+  CHECK(dist.skin() == kept);
+  CHECK(!dist.step().rebuilt);
 }
 
 TEST_CASE("distributed: a pile of boxes steps as one World does, under Jacobi and substepping too",

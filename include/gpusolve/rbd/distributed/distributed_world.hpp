@@ -120,7 +120,7 @@ class DistributedWorld {
     reach_ = largest_ + settings.margin;
     skin_ = default_skin_share * largest_;
     box_ = box ? *box : span(added);
-    make_grid();
+    grid_.emplace(grid_for(skin_));
     std::vector<Placed> owned;
     for (const Placed& p : added)
       if (p.body.status != fixed) owned.push_back(p);
@@ -163,7 +163,9 @@ class DistributedWorld {
   // holds more shadows (docs/distributed.md); the default is
   // default_skin_share of the largest moving body's bound. Every rank calls
   // it with the same value (else, or for one not finite or negative, every
-  // rank throws InvalidArgumentError); the next step rebuilds.
+  // rank throws InvalidArgumentError; for one whose reach spans more than 64
+  // of the ranks' cells, UnsupportedError, as RankGrid; nothing changes then);
+  // the next step rebuilds.
   static constexpr T default_skin_share = T(0.25);
   void set_skin(T skin) {
     int bad = !(skin >= T(0) && skin <= std::numeric_limits<T>::max());
@@ -173,8 +175,9 @@ class DistributedWorld {
     alarm_.allreduce(&lo, 1, detail::mpi_type<T>(), MPI_MIN, comm_);
     alarm_.allreduce(&hi, 1, detail::mpi_type<T>(), MPI_MAX, comm_);
     if (lo != hi) throw InvalidArgumentError("gpusolve: DistributedWorld::set_skin: the ranks passed different skins");
+    RankGrid<T> grid = grid_for(skin);  // a reach past 64 cells throws here, every rank alike, before anything changes
     skin_ = skin;
-    make_grid();
+    grid_.emplace(grid);
     modified_ = true;
   }
   T skin() const { return skin_; }
@@ -315,8 +318,8 @@ class DistributedWorld {
     return messages_.all_gather(mine);
   }
 
-  // The grid of ranks over box_, for queries as far as a body's shadows reach.
-  void make_grid() { grid_.emplace(dims(), box_.first, box_.second, largest_ + reach_ + 2 * skin_); }
+  // The grid of ranks over box_, for queries as far as a body's shadows reach with `skin`.
+  RankGrid<T> grid_for(T skin) const { return RankGrid<T>(dims(), box_.first, box_.second, largest_ + reach_ + 2 * skin); }
 
   // The ranks along x and y (a pile is tall in z): MPI_Dims_create with z at 1.
   std::array<int, 3> dims() const {
