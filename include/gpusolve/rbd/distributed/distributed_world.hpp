@@ -124,15 +124,16 @@ class DistributedWorld {
     std::vector<Placed> owned;
     for (const Placed& p : added)
       if (p.body.status != fixed) owned.push_back(p);
+    std::vector<Placed>().swap(added);  // one copy of the bodies at a time
     fixed_ = fixed_everywhere;
-    owned_ = send_to_owners(owned);
+    owned = send_to_owners(owned);
     alarm_.guard([&] {
       world_.emplace(local_, settings);
       // One rank shares nothing: its World solves as any World does (on the GPU,
       // one persistent kernel); the method must still be one that runs distributed.
       world_->set_exchange(exchange_.get());
       if (ranks_ == 1) world_->set_exchange(nullptr);
-      rebuild({});
+      rebuild(owned, {});
     });
   }
 
@@ -151,9 +152,8 @@ class DistributedWorld {
 
   // The moving bodies this rank owns after the last step, with their global ids.
   std::vector<std::pair<std::uint64_t, Body<T>>> owned() {
-    collect_owned();
     std::vector<std::pair<std::uint64_t, Body<T>>> out;
-    for (const Placed& p : owned_) out.push_back({p.gid, p.body});
+    for (const Placed& p : own_bodies()) out.push_back({p.gid, p.body});
     return out;
   }
 
@@ -192,20 +192,19 @@ class DistributedWorld {
   template <class F>
   bool modify(std::uint64_t gid, F&& f) {
     collect_owned();
-    for (Placed& p : owned_)
-      if (p.gid == gid) {
-        f(p.body);
-        modified_ = true;
-        return true;
-      }
-    return false;
+    const auto at = std::lower_bound(gids_.begin(), gids_.end(), gid);
+    if (at == gids_.end() || *at != gid) return false;
+    Body<T>& b = local_[std::size_t(at - gids_.begin())];
+    if (b.status != active) return false;  // a shadow or fixed body: not this rank's
+    f(b);
+    modified_ = true;
+    return true;
   }
 
   // Every body of the scene in the order of the global ids, on rank `root`
   // (empty elsewhere): moving bodies from their owners, fixed ones as added.
   std::vector<Body<T>> gather(int root = 0) {
-    collect_owned();
-    std::vector<Placed> all = messages_.gather_to(owned_, root);
+    std::vector<Placed> all = messages_.gather_to(own_bodies(), root);
     if (rank_ != root) return {};
     all.insert(all.end(), fixed_.begin(), fixed_.end());
     std::sort(all.begin(), all.end(), [](const Placed& a, const Placed& b) { return a.gid < b.gid; });
@@ -221,10 +220,10 @@ class DistributedWorld {
     DistributedStats<T> out;
     out.rebuilt = bodies_change();
     if (out.rebuilt) {
-      collect_owned();
+      std::vector<Placed> owned = own_bodies();
       std::vector<std::vector<Remembered>> to = remembered_by_rank();
-      owned_ = send_to_owners(owned_);
-      rebuild(messages_.exchange(to));
+      owned = send_to_owners(owned);
+      rebuild(owned, messages_.exchange(to));
     }
     ++steps_;
     const auto exchanged = std::chrono::steady_clock::now();
@@ -365,14 +364,20 @@ class DistributedWorld {
     return mine;
   }
 
-  // The owned bodies' state from the World after its last step, read back.
+  // The World's bodies in local_ as its last step left them, read back.
   void collect_owned() {
     if (!stepped_) return;
     world_->syncHost();
-    std::size_t o = 0;
-    for (std::size_t k = 0; k < local_.size(); ++k)
-      if (local_[k].status == active) owned_[o++].body = local_[k];
     stepped_ = false;
+  }
+
+  // The moving bodies this rank owns, with their global ids, as they are now.
+  std::vector<Placed> own_bodies() {
+    collect_owned();
+    std::vector<Placed> out;
+    for (std::size_t k = 0; k < local_.size(); ++k)
+      if (local_[k].status == active) out.push_back({gids_[k], local_[k]});
+    return out;
   }
 
   // The contacts this rank remembered in the last step, by the rank that
@@ -415,20 +420,20 @@ class DistributedWorld {
     world_->remember(kept);
   }
 
-  // The World's bodies again: the fixed ones, this rank's own, and shadows of
-  // the bodies that higher ranks own within reach of this rank's cell, in the
-  // order of their ids; the contacts it solves next remembered (`moved`), the
-  // exchange told which bodies are shared.
-  void rebuild(const std::vector<Remembered>& moved) {
+  // The World's bodies again: the fixed ones, this rank's own (`owned`, by
+  // id), and shadows of the bodies that higher ranks own within reach of this
+  // rank's cell, in the order of their ids; the contacts it solves next
+  // remembered (`moved`), the exchange told which bodies are shared.
+  void rebuild(const std::vector<Placed>& owned, const std::vector<Remembered>& moved) {
     std::vector<std::vector<Placed>> to(ranks_);
-    std::vector<std::vector<std::size_t>> sent(ranks_);  // indices into owned_
-    shadowed_at_.resize(owned_.size());
-    for (std::size_t k = 0; k < owned_.size(); ++k) {
-      shadowed_at_[k] = shadow_ranks(owned_[k].body);
+    std::vector<std::vector<std::size_t>> sent(ranks_);  // indices into owned
+    std::vector<std::uint64_t> shadowed_at(owned.size());  // per owned body: the ranks that hold its shadow
+    for (std::size_t k = 0; k < owned.size(); ++k) {
+      shadowed_at[k] = shadow_ranks(owned[k].body);
       for (int bit = 0; bit < 64; ++bit)
-        if (shadowed_at_[k] >> bit & 1u) {
+        if (shadowed_at[k] >> bit & 1u) {
           const int r = grid_->neighbour(rank_, bit);
-          to[r].push_back(owned_[k]);
+          to[r].push_back(owned[k]);
           sent[r].push_back(k);
         }
     }
@@ -439,12 +444,12 @@ class DistributedWorld {
     struct Entry {
       std::uint64_t gid;
       const Placed* p;
-      int kind;  // 0 fixed, 1 owned (index `at` into owned_), 2 shadow from rank `at`
+      int kind;  // 0 fixed, 1 owned (index `at` into owned), 2 shadow from rank `at`
       std::size_t at;
     };
     std::vector<Entry> all;
     for (const Placed& p : fixed_) all.push_back({p.gid, &p, 0, 0});
-    for (std::size_t k = 0; k < owned_.size(); ++k) all.push_back({owned_[k].gid, &owned_[k], 1, k});
+    for (std::size_t k = 0; k < owned.size(); ++k) all.push_back({owned[k].gid, &owned[k], 1, k});
     for (std::size_t k = 0; k < came.size(); ++k) all.push_back({came[k].gid, &came[k], 2, std::size_t(from[k])});
     std::sort(all.begin(), all.end(), [](const Entry& a, const Entry& b) { return a.gid < b.gid; });
     std::vector<std::uint64_t> gids(all.size());
@@ -453,7 +458,7 @@ class DistributedWorld {
     SharedBodies shared;
     shared.shadows.assign(ranks_, {});
     shared.copies.assign(ranks_, {});
-    std::vector<std::size_t> local_of_owned(owned_.size());
+    std::vector<std::size_t> local_of_owned(owned.size());
     for (std::size_t k = 0; k < all.size(); ++k) {
       gids[k] = all[k].gid;
       records[k] = all[k].p->body;
@@ -470,7 +475,7 @@ class DistributedWorld {
     for (int r = 0; r < ranks_; ++r)
       for (std::size_t k : sent[r]) shared.copies[r].push_back(local_of_owned[k]);
     std::vector<std::uint64_t> shadowed_by_local(all.size(), 0);
-    for (std::size_t k = 0; k < owned_.size(); ++k) shadowed_by_local[local_of_owned[k]] = shadowed_at_[k];
+    for (std::size_t k = 0; k < owned.size(); ++k) shadowed_by_local[local_of_owned[k]] = shadowed_at[k];
     // Every rank's bodies valid and finite before the World sees them, or the
     // same error on every rank, and no step.
     agree_.run([&] {
@@ -530,7 +535,7 @@ class DistributedWorld {
   RankMessages messages_;
   BodySet<T> local_;                   // the World's bodies: fixed, owned and shadows, by id
   std::vector<std::uint64_t> gids_;    // of local_'s bodies
-  std::vector<Placed> fixed_, owned_;  // owned_: this rank's moving bodies, by id
+  std::vector<Placed> fixed_;          // every rank's fixed bodies
   std::optional<RankGrid<T>> grid_;
   std::pair<Vec, Vec> box_;  // the grid's
   T largest_ = 0;  // the largest moving body's bound
@@ -542,9 +547,8 @@ class DistributedWorld {
   OwnedBodies own_;  // the check of this rank's bodies after the last step or rebuild
   std::size_t shadows_ = 0;
   std::size_t steps_ = 0;  // steps taken
-  bool stepped_ = false;  // the World holds state that owned_ has not taken back
+  bool stepped_ = false;  // the World holds state that local_ has not taken back
   bool modified_ = false;  // modify() changed a body since the last rebuild
-  std::vector<std::uint64_t> shadowed_at_;  // per owned body: the ranks that hold its shadow (shadow_ranks)
 };
 
 }  // namespace gpusolve::rbd
