@@ -139,9 +139,10 @@ class DistributedWorld {
 
   // One step of the whole scene; every rank calls it. The ranks' Worlds are
   // rebuilt only where a body goes past its cell or towards a rank without
-  // its shadow by more than the skin (set_skin), holds a state that is not finite (the rebuild's check names it on every
-  // rank), or was modified: otherwise every shadow has moved exactly as its
-  // owner (the same velocity sums, the same integration). A rank that fails
+  // its shadow by more than the skin (set_skin), holds a state that is not
+  // finite (the rebuild's check names it on every rank), or was modified:
+  // otherwise every shadow has moved exactly as its owner (the same velocity
+  // sums, the same integration). A rank that fails
   // inside a step (out of memory, a failed launch) raises the alarm
   // (RankAlarm): the other ranks' waits end and they throw the same error,
   // named by that rank. A world that threw must not be stepped again (its
@@ -502,9 +503,9 @@ class DistributedWorld {
   }
 
   // Whether any rank's bodies change before this step (a collective): a body
-  // whose centre left its rank's cell, whose shadows are due on other ranks
-  // than where they are, whose state is not finite (OwnedBodiesCheck after
-  // the last step), or that was modified.
+  // more than the skin past its cell, one that needs a shadow where there is
+  // none, one whose state is not finite (OwnedBodiesCheck after the last
+  // step), or one that was modified.
   bool bodies_change() {
     int change = modified_ || own_.to_move != 0 ? 1 : 0;
     alarm_.allreduce(&change, 1, MPI_INT, MPI_LOR, comm_);
