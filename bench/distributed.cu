@@ -19,7 +19,8 @@
 // its exchanges) and integration (World::set_phase_timing); `exchange`, the
 // solve's exchanges of sums and reductions, waits included. Over the last 200
 // steps the largest penetration; at the end the contacts and shadows; the
-// steps that rebuilt. Rank 0 prints a line and appends a CSV row.
+// steps that rebuilt; the last step's contact imbalance (the most contacts a
+// rank solved over the ranks' mean). Rank 0 prints a line and appends a CSV row.
 #include <mpi.h>
 
 #include <algorithm>
@@ -51,8 +52,19 @@ struct Result {
   double ms[phases] = {}, penetration = 0;
   long rebuilds = 0;  // in the measured steps
   T skin = 0;         // the world's
+  double imbalance = 0;  // the last step's: the most contacts a rank solved over the ranks' mean
   rbd::DistributedStats<T> last;
 };
+
+// The most contacts one rank solves over the ranks' mean (1: balanced), a collective.
+double contact_imbalance(std::size_t mine) {
+  double most = double(mine), all = double(mine);
+  int ranks = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  MPI_Allreduce(MPI_IN_PLACE, &most, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  return all > 0 ? most * ranks / all : 1.0;
+}
 
 template <class Device, class Method>
 Result run(const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T>& s, rbd::RankTransport transport,
@@ -83,6 +95,7 @@ Result run(const rbd::BodySet<T>& scene, long steps, const rbd::SolverSettings<T
     if (k >= steps - 200) r.penetration = std::max(r.penetration, double(st.max_penetration));
   }
   for (int p = 0; p < phases; ++p) r.ms[p] = median(measured[p]);
+  r.imbalance = contact_imbalance(r.last.local.solver.contacts);
   return r;
 }
 
@@ -157,10 +170,10 @@ int main(int argc, char** argv) {
     const int threads = std::getenv("OMP_NUM_THREADS") ? std::atoi(std::getenv("OMP_NUM_THREADS")) : 0;
     std::printf("%s%s%s, %s over %s, ranks %d (OMP_NUM_THREADS %d), %zu spheres, %ld steps: %.2f ms/step (bodies %.2f, detection "
                 "%.2f, solve %.2f, exchange %.2f, integration %.2f), contacts %zu, shadows %zu, penetration %.4f%%, "
-                "rebuilt before %ld of the %ld measured steps (skin %.3g%s)\n",
+                "rebuilt before %ld of the %ld measured steps (skin %.3g%s), contact imbalance %.3f\n",
                 backend.c_str(), gpu.empty() ? "" : " ", gpu.c_str(), mode.c_str(), transport.c_str(), ranks, threads, n, steps, r.ms[0], r.ms[1], r.ms[2], r.ms[3], r.ms[4], r.ms[5],
                 r.last.contacts, r.last.shadows, 100 * r.penetration, r.rebuilds, steps / 3, double(r.skin),
-                spread ? ", each rank adding its share" : "");
+                spread ? ", each rank adding its share" : "", r.imbalance);
     if (!csv.empty()) {
       FILE* f = std::fopen(csv.c_str(), "a");
       if (f) {
@@ -168,12 +181,13 @@ int main(int argc, char** argv) {
         if (std::ftell(f) == 0) {
           std::fprintf(f, "backend,ranks,threads_per_rank,n,steps");
           for (const char* p : phase_names) std::fprintf(f, ",ms_%s", p);
-          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds,mode,gpu,per_rank,transport,skin,spread\n");
+          std::fprintf(f, ",contacts,shadows,max_penetration,rebuilds,mode,gpu,per_rank,transport,skin,spread,imbalance\n");
         }
         std::fprintf(f, "%s,%d,%d,%zu,%ld", backend.c_str(), ranks, threads, n, steps);
         for (double x : r.ms) std::fprintf(f, ",%.4f", x);
-        std::fprintf(f, ",%zu,%zu,%.6g,%ld,%s,%s,%zu,%s,%.6g,%d\n", r.last.contacts, r.last.shadows, r.penetration,
-                     r.rebuilds, mode.c_str(), gpu.c_str(), per_rank, transport.c_str(), double(r.skin), int(spread));
+        std::fprintf(f, ",%zu,%zu,%.6g,%ld,%s,%s,%zu,%s,%.6g,%d,%.4f\n", r.last.contacts, r.last.shadows,
+                     r.penetration, r.rebuilds, mode.c_str(), gpu.c_str(), per_rank, transport.c_str(), double(r.skin),
+                     int(spread), r.imbalance);
         std::fclose(f);
       }
     }
