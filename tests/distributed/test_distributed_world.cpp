@@ -556,6 +556,27 @@ TEST_CASE("distributed: messages and gathers of more than 2^31 bytes arrive whol
   }
 }
 
+TEST_CASE("distributed: the shared pile added a share a rank is the pile, its planes first", "[distributed]") {
+  // bench/distributed.cu --spread: each rank adds its part of the lattice
+  // (shared_pile_part); numbered part by part, the parts are the pile that
+  // shared_pile gives (its spheres, then its five planes), planes first.
+  const std::size_t n = 300;
+  const auto part = gpusolve::bench::shared_pile_part<double>(n, std::size_t(rank_of_world()),
+                                                              std::size_t(ranks_of_world()));
+  DistributedWorld<TestDevice, double> dist(MPI_COMM_WORLD, part, SolverSettings<double>{});
+  const std::vector<Body<double>> all = dist.gather(0);
+  if (rank_of_world() != 0) return;
+  const BodySet<double> whole = gpusolve::bench::shared_pile<double>(n);
+  REQUIRE(all.size() == whole.size());
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Body<double>& want = i < 5 ? whole[n + i] : whole[i - 5];
+    for (int a = 0; a < 3; ++a) wrong += all[i].pos[a] != want.pos[a];
+    wrong += all[i].shape != want.shape || all[i].status != want.status;
+  }
+  CHECK(wrong == 0);
+}
+
 TEST_CASE("distributed: a method that does not run distributed is refused on every rank", "[distributed]") {
   CHECK_THROWS_AS((DistributedWorld<TestDevice, double, ConeFriction, LocalJacobi>(MPI_COMM_WORLD,
                                                                          on_rank_zero(sphere_pile()),
