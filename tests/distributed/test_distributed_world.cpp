@@ -1,10 +1,12 @@
 // DistributedWorld over MPI, on the CPU backend (run by ctest with mpirun at
 // 1, 2 and 4 ranks) and, compiled again by test_distributed_world_gpu.cu with
 // GPUSOLVE_TEST_GPU, on the GPUs (the node's, taken in turn): piles of spheres, boxes,
-// capsules and unions match one World over the whole scene; bodies that cross
-// between ranks are neither lost nor doubled; a NaN in one rank's body and a
-// rank that throws are reported by every rank; a node's ranks take its GPUs in
-// turn; NCCL's exchange where each rank has a GPU (else it is refused).
+// capsules and unions match one World over the whole scene, under every
+// method and sum; bodies that cross between ranks are neither lost nor
+// doubled; a skin keeps the ranks' Worlds while bodies jostle at the borders;
+// a NaN in one rank's body, a rank that throws and a bad skin are reported by
+// every rank; messages past 2^31 bytes arrive whole; a node's ranks take its
+// GPUs in turn; NCCL's exchange where each rank has a GPU (else it is refused).
 #define CATCH_CONFIG_RUNNER
 #include <mpi.h>
 
