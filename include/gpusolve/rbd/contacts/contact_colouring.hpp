@@ -161,27 +161,12 @@ struct ColourBounds {
   }
 };
 
-// ends[p]: one past the last point of the pair whose first point is order[p].
-template <class CV>
-struct PairEnds {
-  CV c;
-  const std::uint32_t* order;
-  std::uint32_t* ends;
-  GPUSOLVE_HD void operator()(std::size_t p) const {
-    const std::size_t first = order[p], n = c.size();
-    std::size_t end = first + 1;
-    while (end < n && c.same_pair(first, end)) ++end;
-    ends[p] = std::uint32_t(end);
-  }
-};
-
 // The colours of one build (ContactColouring::view()): colour k's pairs are
 // those whose first points are order[bounds[k]], ..., order[bounds[k + 1] - 1],
-// each ending before ends[] at the same place, with `bounds` in the contacts'
-// backend memory; `widest`: the most pairs of one colour.
+// with `bounds` in the contacts' backend memory; `widest`: the most pairs of
+// one colour.
 struct ColourView {
   const std::uint32_t* order;
-  const std::uint32_t* ends;
   const std::uint32_t* bounds;
   std::size_t colours, widest;
 };
@@ -197,7 +182,11 @@ struct InColour {
   GPUSOLVE_HD void operator()(std::size_t j) const {
     const std::size_t first = colours.bounds[k];
     if (first + j >= colours.bounds[k + 1]) return;
-    f(std::size_t(colours.order[first + j]), std::size_t(colours.ends[first + j]));
+    const std::uint32_t i = colours.order[first + j], a = c.a[i], b = c.b[i];
+    const std::size_t n = c.size();
+    std::size_t end = i + 1;
+    while (end < n && c.a[end] == a && c.b[end] == b) ++end;
+    f(std::size_t(i), end);
   }
 };
 
@@ -226,8 +215,7 @@ GPUSOLVE_HD void sweep_colours(const E& e, const CV& c, const ColourView& colour
 // free. About as many colours as the most pairs on one body (a close-packed
 // sphere: 12). Deterministic on both backends. After build(), order() lists the
 // pairs' first points colour by colour, colour k occupying [offset(k),
-// offset(k + 1)), and the later points behind them, with each pair's end
-// beside it (ColourView::ends, so that a sweep need not look for it); those offsets are the
+// offset(k + 1)), and the later points behind them; those offsets are the
 // host's, read back once per build. Past 64 colours a colour number may stay
 // empty (see PickColour). Where the contacts join the same bodies in the same
 // order as at the last build, none of them having started or stopped moving (a
@@ -247,8 +235,6 @@ class ContactColouring {
     if (nc == 0) return;
     const std::uint32_t colours = colour(b, c, stream);
     sort_by_colour(nc, colours, stream);
-    gpusolve::detail::ensure_size(ends_, offsets_.back());
-    launch(Device{}, offsets_.back(), detail::PairEnds<CV>{c, order_.data(), ends_.data()}, stream);
     keep_pairs(b, c, stream);
   }
 
@@ -257,7 +243,7 @@ class ContactColouring {
   detail::ColourView view() const {
     std::size_t widest = 0;
     for (std::size_t k = 0; k < colours(); ++k) widest = std::max(widest, offsets_[k + 1] - offsets_[k]);
-    return {order_.data(), ends_.data(), bounds_.data(), colours(), widest};
+    return {order_.data(), bounds_.data(), colours(), widest};
   }
   std::size_t offset(std::size_t k) const { return offsets_[k]; }
   const std::uint32_t* order() const { return order_.data(); }
@@ -340,7 +326,7 @@ class ContactColouring {
 
   ContactGrouping<Device> grouping_;
   detail::DeviceAlgorithms<Device> algorithms_;
-  U32 colour_, sorted_colour_, order_, ends_, bounds_, sequence_;
+  U32 colour_, sorted_colour_, order_, bounds_, sequence_;
   U32 kept_a_, kept_b_, changed_;  // the last build's pairs (KeepPairs), and what compares them
   VectorD1<detail::ColouringCounters, device_is<Device>> counters_;  // one, read back in one copy per batch
   VectorD1<std::uint32_t, device_is<device::cpu>> bounds_host_;

@@ -71,20 +71,8 @@ struct PassSums {
 template <class T>
 struct PassSink {
   PassSums<T>* sums;
-  bool take = true;  // false: a repeated point's update (GaussSeidelContact), counted nowhere
   GPUSOLVE_HD void add(std::size_t, const BodyResponse<T>& d) const {
-    if (take) sums->dva += d.dva, sums->dwa += d.dwa, sums->dvb += d.dvb, sums->dwb += d.dwb;
-  }
-};
-
-// The iterate of a pass's point: its impulse loaded from c.x, its new one kept
-// in registers (`out`) and stored after the points taken with it.
-template <class T, std::size_t R>
-struct KeptIterate : CurrentIterate<T> {
-  T (&out)[R];
-  template <class CV>
-  GPUSOLVE_HD void store(const CV&, std::size_t, const T (&)[R], const T (&)[R], const T (&x)[R]) const {
-    for (std::size_t r = 0; r < R; ++r) out[r] = x[r];
+    sums->dva += d.dva, sums->dwa += d.dwa, sums->dvb += d.dvb, sums->dwb += d.dwb;
   }
 };
 
@@ -99,37 +87,25 @@ struct KeptIterate : CurrentIterate<T> {
 // 100 to 400 iterations); one pass at 1/k converged too slowly for a tower of
 // thin slabs (it sank 1.3% in 10 s), two hold it (docs/methods.md). A pair of
 // one point takes one. The first pass records the residual: the change the
-// sweep found. A pass takes its points `together` at a time, none storing
-// before all are updated, and each loading its bodies with its error's data
-// (ContactBodies), so that their loads overlap: one after another, each point
-// cost a memory round trip or more. Past the pair's end the last point is
-// taken again (its loads unconditional) and its update counted nowhere.
+// sweep found. Each point's bodies are loaded with its error's data, before
+// its impulse (ContactBodies), so that a point costs one memory round trip.
 template <class Model, class BV, class CV, class T>
 struct GaussSeidelContact {
-  static constexpr std::size_t together = 4;  // a box face's points
   CalcNextPhi<Model, BV, CV, T> phi;
   ResolveCollisions<Model, BV, CV, PassSink<T>, T> resolve;  // its sink: each pass's sums
   GPUSOLVE_HD void operator()(std::size_t first, std::size_t end) const {
-    constexpr std::size_t R = Model::rows;
     const std::size_t passes = end - first > 1 ? 2 : 1;  // one point (every sphere pair): one update
     PairVelocities<T> pair(phi.b, phi.c.a[first], phi.c.b[first]);
     GPUSOLVE_NO_UNROLL
     for (std::size_t p = 0; p < passes; ++p) {
       PassSums<T> sums{};
-      for (std::size_t base = first; base < end; base += together) {
-        T x[together][R];
-        for (std::size_t k = 0; k < together; ++k) {
-          const bool real = base + k < end;
-          const std::size_t i = real ? base + k : end - 1;
-          ResolveCollisions<Model, BV, CV, PassSink<T>, T> summing = resolve;
-          summing.sink = {&sums, real};
-          const ContactBodies<T> bodies(phi.b, phi.c, i);
-          T e[R];
-          phi.error(i, e, pair);
-          summing.update(i, e, KeptIterate<T, R>{{}, x[k]}, bodies, p == 0 && real);
-        }
-        for (std::size_t k = 0; k < together && base + k < end; ++k)
-          for (std::size_t r = 0; r < R; ++r) phi.c.x(base + k, r) = x[k][r];
+      ResolveCollisions<Model, BV, CV, PassSink<T>, T> summing = resolve;
+      summing.sink.sums = &sums;
+      for (std::size_t i = first; i < end; ++i) {
+        const ContactBodies<T> bodies(phi.b, phi.c, i);
+        T e[Model::rows];
+        phi.error(i, e, pair);
+        summing.update(i, e, CurrentIterate<T>{}, bodies, p == 0);
       }
       pair.add(sums);
     }
