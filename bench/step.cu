@@ -2,9 +2,9 @@
 //
 // Run: gpusolve_bench_step [--n 1000,10000,100000,1000000] [--modes jacobi10,defaults,tolerance,check50,rolling]
 //                          [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle 900] [--steps 100] [--cpu-steps 20]
-//                          [--cpu-max 1000000] [--one-world] [--reorder N] [--csv FILE]
+//                          [--cpu-max 1000000] [--one-world] [--reorder N] [--scene pile|cubes] [--csv FILE]
 //
-// For each N the shared pile (bench/shared_pile.hpp, docs/piles.md)
+// For each N the shared pile (bench/shared_pile.hpp, docs/piles.md; --scene cubes: the cube pile)
 // falls for `settle` steps on the GPU at the library's defaults; every timing
 // then starts from that same settled state, copied into a fresh World:
 //   jacobi10:  projected Jacobi (gather), exactly 10 iterations per step, one check;
@@ -89,6 +89,7 @@ struct Options {
   std::size_t cpu_max = 1000000;
   bool one_world = false;
   std::size_t reorder = 0;
+  std::string scene = "pile";  // or "cubes"
   std::string csv;
 };
 
@@ -257,7 +258,7 @@ int main(int argc, char** argv) {
   Options o;
   const char* usage =
       "[--n LIST] [--modes jacobi10,defaults,tolerance,check50,rolling] [--loop auto,auto-grid,auto-nograph,persistent,launches,graphs] [--settle N] [--steps N] [--cpu-steps N] [--cpu-max N] "
-      "[--one-world] [--reorder N] [--csv FILE]";
+      "[--one-world] [--reorder N] [--scene pile|cubes] [--csv FILE]";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--n") o.n = parse_list<std::size_t>(option_value(argc, argv, i));
@@ -269,9 +270,11 @@ int main(int argc, char** argv) {
     else if (a == "--cpu-max") o.cpu_max = std::stoul(option_value(argc, argv, i));
     else if (a == "--one-world") o.one_world = true;
     else if (a == "--reorder") o.reorder = std::stoul(option_value(argc, argv, i));
+    else if (a == "--scene") o.scene = option_value(argc, argv, i);
     else if (a == "--csv") o.csv = option_value(argc, argv, i);
     else usage_exit(argv[0], usage, a);
   }
+  if (o.scene != "pile" && o.scene != "cubes") usage_exit(argv[0], usage, "--scene " + o.scene);
   try {
     const std::string gpu_name = print_banner("gpusolve whole-step benchmark: the shared pile, per phase and in total");
 #if defined(_OPENMP)
@@ -284,9 +287,9 @@ int main(int argc, char** argv) {
                               "backend,n,mode,loop,contacts,steps,ms_step_median,ms_step_queued,ms_detection,ms_solve,"
                               "ms_integration,iterations_mean,max_penetration,residual_median,cpu_threads,gpu,"
                               "ms_step_unattended,steps_requeued,iterations_mean_unattended,device_bytes,"
-                              "device_bytes_per_body,reorder_every,g_contact_iterations_per_s");
+                              "device_bytes_per_body,reorder_every,g_contact_iterations_per_s,scene");
     for (std::size_t n : o.n) {
-      rbd::BodySet<T> set = shared_pile<T>(n);
+      rbd::BodySet<T> set = o.scene == "cubes" ? cube_pile<T>(n) : shared_pile<T>(n);
       {
         std::printf("... n=%zu: settling %ld steps on the GPU at the defaults\n", n, o.settle);
         std::fflush(stdout);
@@ -319,12 +322,12 @@ int main(int argc, char** argv) {
             if (rate > 0) std::printf("    solve: %.2f G contact-iterations per second\n", rate);
             std::fflush(stdout);
             if (csv)
-              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s,%.5f,%zu,%.2f,%zu,%.1f,%zu,%.3f\n",
+              std::fprintf(csv, "%s,%zu,%s,%s,%zu,%zu,%.5f,%.5f,%.5f,%.5f,%.5f,%.2f,%.6g,%.4g,%d,%s,%.5f,%zu,%.2f,%zu,%.1f,%zu,%.3f,%s\n",
                            gpu ? "gpu" : "cpu", n, mode.c_str(), gpu ? g.c_str() : "-", r.contacts, r.steps, r.step_ms,
                            r.queued_ms, r.detection_ms, r.solve_ms, r.integration_ms, r.iterations, r.penetration,
                            r.residual, cpu_threads, gpu_name.c_str(), r.unattended_ms, r.requeued,
                            r.unattended_iterations, r.device_bytes, double(r.device_bytes) / double(n), o.reorder,
-                           rate);
+                           rate, o.scene.c_str());
           }
       }
     }
