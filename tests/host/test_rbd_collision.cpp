@@ -2,8 +2,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+#include <new>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "catch_compat.hpp"
@@ -245,4 +248,28 @@ TEST_CASE("contacts that cannot grow throw OutOfMemoryError naming the contacts 
   }
   CHECK(c.size() == 8);  // the failed growth left the count and the capacity as they were
   CHECK(c.capacity() == 8);
+}
+
+TEST_CASE("a detection's graph key has the same bytes for the same launches, whatever its storage held",
+          "[rbd][collision]") {
+  // GraphReplay launches the kept graph again only while the key's bytes are
+  // those of the capture; padding left as it was would capture anew.
+  BodySet<float> s;
+  s.add_box({0.f, 0.f, 1.f}, {1.f, 1.f, 1.f}, 1.f);
+  s.add_plane({0.f, 0.f, 1.f}, 0.f);
+  BodyManager<device::cpu> m(s);
+  m.syncDevice();
+  Contacts<device::cpu, float, ConeFriction> c;
+  c.resize(8);
+  const auto b = m.device().view();
+  const auto cv = c.view();
+  using Key = rbd::detail::DetectionKey<std::remove_const_t<decltype(b)>, std::remove_const_t<decltype(cv)>, float>;
+  const ContactDefaults<float> defaults({0.5f, 0.f, 0.f, 0.f}, 1.f, 0.0025f);
+  std::uint32_t hold = 0;
+  alignas(Key) unsigned char zeros[sizeof(Key)], ones[sizeof(Key)];
+  std::memset(zeros, 0x00, sizeof(Key));
+  std::memset(ones, 0xff, sizeof(Key));
+  const Key* first = new (zeros) Key{b, cv, 0.1f, defaults, &hold, m.device().shapes};
+  const Key* second = new (ones) Key{b, cv, 0.1f, defaults, &hold, m.device().shapes};
+  CHECK(std::memcmp(first, second, sizeof(Key)) == 0);
 }

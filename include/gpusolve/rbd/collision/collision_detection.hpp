@@ -7,8 +7,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include <limits>
+#include <type_traits>
 
 #include <cuda/atomic>
 
@@ -297,6 +299,14 @@ struct DetectionKey {
   ContactDefaults<T> defaults;
   std::uint32_t* hold;
   ShapeMask shapes;
+
+  // GraphReplay compares keys byte by byte, padding included: zeroed here, or
+  // what the stack held there would make the same detection capture again.
+  DetectionKey(const View& b, const ContactView& c, T m, const ContactDefaults<T>& d, std::uint32_t* h,
+               ShapeMask s) {
+    std::memset(static_cast<void*>(this), 0, sizeof(*this));
+    bodies = b, contacts = c, margin = m, defaults = d, hold = h, shapes = s;
+  }
 };
 
 }  // namespace detail
@@ -424,7 +434,8 @@ class CollisionDetection {
     const auto cv = contacts.view();
     auto queue = [&](stream_t q) { queue_contacts(bodies, cv, margin, defaults, hold, q); };
     if (graphs_ && sized_for_ == n) {  // every scratch store sized: nothing allocates in the capture
-      const detail::DetectionKey<View, decltype(cv), T> key{b, cv, margin, defaults, hold, bodies.shapes};
+      using Key = detail::DetectionKey<View, std::remove_const_t<decltype(cv)>, T>;
+      const Key key{b, cv, margin, defaults, hold, bodies.shapes};
       graph_.run(key, queue, stream);
     } else {  // scratch may have moved: no kept graph may point to it
       graph_.forget();
