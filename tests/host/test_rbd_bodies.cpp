@@ -7,6 +7,7 @@
 
 #include "catch_compat.hpp"
 #include "gpusolve/rbd/bodies/body_manager.hpp"
+#include "gpusolve/rbd/bodies/spatial_order.hpp"
 
 using namespace gpusolve;
 using namespace gpusolve::rbd;
@@ -127,6 +128,54 @@ TEST_CASE("BodyManager copies bodies and derived fields, and brings state back",
   m.syncHost();
   CHECK(s[0].pos[0] == 7.f);
   CHECK(s[0].v[1] == -2.f);
+}
+
+TEST_CASE("BodyManager syncs more bodies than its staging holds, in a spatial order, with bodies added",
+          "[rbd][bodies]") {
+  // sync_chunk bodies pass through the host at a time: a sync of more must
+  // give every body its own record, whatever chunk and slot it lands in.
+  const std::size_t n = sync_chunk + 3000, added = 2000;
+  BodySet<float> s;
+  for (std::size_t i = 0; i < n; ++i) {
+    s.add_sphere({0.001f * float(i), 1.f, 2.f}, 0.5f + 0.01f * float(i % 7), 1.f + float(i % 5));
+    s[i].v = {float(i % 11), 0.f, 0.f};
+  }
+  BodyManager<device::cpu> m(s);
+  m.syncDevice();
+  auto& d = m.device();
+  REQUIRE(d.size() == n);
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    wrong += d.pos(i, 0) != s[i].pos[0] || d.v(i, 0) != s[i].v[0] || d.inv_mass(i) != s[i].inv_mass ||
+             d.radius(i) != s[i].shape_param[0] || d.aabb(i, 3) != s[i].pos[0] + s[i].shape_param[0];
+  CHECK(wrong == 0);
+  // The device puts its bodies in reverse order, moves each by its record's index, and the records follow.
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t k = 0; k < n; ++k) order[k] = std::uint32_t(n - 1 - k);
+  SpatialOrder<device::cpu, float>::apply(d, order.data());
+  m.reordered(order);
+  for (std::size_t k = 0; k < n; ++k) d.pos(k, 1) = 1000.f + float(m.body(k));
+  m.syncHost();
+  wrong = 0;
+  for (std::size_t i = 0; i < n; ++i) wrong += m.slot(i) != n - 1 - i || s[i].pos[1] != 1000.f + float(i);
+  CHECK(wrong == 0);
+  // Bodies added take the slots past the old end, whole; the old keep their
+  // mass and take their records' state. The first addition grows the store
+  // (every body copied whole), the second fits (the new from the middle of a chunk).
+  for (std::size_t i = 0; i < added; ++i) m.bodyAdded(s.add_sphere({-1.f, -2.f, float(i)}, 0.25f, 8.f));
+  CHECK(m.syncDevice().full_from == 0);
+  for (std::size_t i = 0; i < added; ++i) m.bodyAdded(s.add_sphere({-1.f, -3.f, float(i)}, 0.25f, 8.f));
+  s[7].v = {-3.f, 0.f, 0.f};
+  CHECK(m.syncDevice().full_from == n + added);
+  REQUIRE(d.size() == n + 2 * added);
+  wrong = 0;
+  for (std::size_t i = 0; i < n + 2 * added; ++i) {
+    const std::size_t k = m.slot(i);
+    wrong += (i >= n && k != i) || d.pos(k, 1) != s[i].pos[1] || d.pos(k, 2) != s[i].pos[2] ||
+             d.v(k, 0) != s[i].v[0] || d.inv_mass(k) != s[i].inv_mass || d.radius(k) != s[i].shape_param[0];
+  }
+  CHECK(wrong == 0);
+  CHECK(d.v(m.slot(7), 0) == -3.f);
 }
 
 TEST_CASE("BodyManager: lazy add, skipped leading bodies, removal threshold", "[rbd][bodies]") {

@@ -14,7 +14,6 @@
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/bodies/body_set.hpp"
 #include "gpusolve/rbd/bodies/derived_fields.hpp"
-#include "gpusolve/rbd/bodies/spatial_order.hpp"
 #include "gpusolve/math/quaternion.hpp"
 #include "gpusolve/math/rotation.hpp"
 
@@ -28,6 +27,9 @@ struct SyncReport {
 };
 
 inline constexpr std::size_t default_rebuild_threshold = 256;
+// Bodies packed, or unpacked, per pass of a sync through the host staging
+// store: the store holds this many, not one record per body (282 bytes each).
+inline constexpr std::size_t sync_chunk = std::size_t(1) << 16;
 
 // For users whose engine keeps its bodies on the host, in a BodySet. Changes
 // announced by bodyAdded/bodyRemoved are applied lazily, at the next sync.
@@ -69,18 +71,21 @@ class BodyManager {
     if (n != host_.size())
       throw SizeMismatchError("gpusolve: BodyManager::syncHost: the BodySet changed size since the "
                               "last syncDevice; announce changes with bodyAdded/bodyRemoved and sync");
-    copy_fields(staging_, device_, 0, n, true, stream);
-    for (std::size_t i = 0; i < n; ++i) unpack(i, slot(i));
+    for (std::size_t c = 0; c < n; c += sync_chunk) {
+      const std::size_t e = std::min(n, c + sync_chunk);
+      staging_.resize(e - c);
+      copy_fields(staging_, 0, device_, c, e - c, true, stream);
+      for (std::size_t k = c; k < e; ++k) unpack(body(k), k - c);
+    }
   }
 
   // The device bodies were put in `order` (their slot k now holds what slot
-  // order[k] held; SpatialOrder): the host's mirror follows, and so do the
-  // slots of the BodySet's bodies.
+  // order[k] held; SpatialOrder): the slots of the BodySet's bodies follow.
   void reordered(const std::vector<std::uint32_t>& order, stream_t stream = stream_t{}) {
     const std::size_t n = device_.size();
     if (order.size() != n)
       throw SizeMismatchError("gpusolve: BodyManager::reordered: the order must name every body's slot once");
-    SpatialOrder<device::cpu, T>::apply(staging_, order.data(), stream);
+    (void)stream;
     std::vector<std::uint32_t> body_of(n);
     for (std::size_t k = 0; k < n; ++k) body_of[k] = std::uint32_t(body(order[k]));
     slot_of_.assign(n, 0);
@@ -151,20 +156,23 @@ class BodyManager {
       }
     // Growth reallocates (contents lost), so double to keep appends amortised.
     if (n > device_.capacity()) {
-      const std::size_t cap = std::max(n, 2 * device_.capacity());
-      device_.resize(cap);
-      staging_.resize(cap);
+      device_.resize(std::max(n, 2 * device_.capacity()));
       first = 0;
     }
     device_.resize(n);
-    staging_.resize(n);
-    device_.shapes = staging_.shapes = shapes;
+    device_.shapes = shapes;
     first = std::min(first, n);
-    for (std::size_t i = 0; i < n; ++i) pack(i, slot(i), i >= first);
-    update_derived(device::cpu{}, staging_.view(), 0, n);
-    copy_fields(device_, staging_, 0, first, false, stream);
-    copy_fields(device_, staging_, first, n, true, stream);
-    if (full || staging_.parts.size() != host_.parts().size()) copy_parts();
+    // Slot by slot, sync_chunk at a time: every field packed (the derived ones
+    // need shape and mass), the per-step ones copied below `first`, all from it.
+    for (std::size_t c = 0; c < n; c += sync_chunk) {
+      const std::size_t e = std::min(n, c + sync_chunk), split = std::clamp(first, c, e);
+      staging_.resize(e - c);
+      for (std::size_t k = c; k < e; ++k) pack(body(k), k - c);
+      update_derived(device::cpu{}, staging_.view(), 0, e - c);
+      copy_fields(device_, c, staging_, 0, split - c, false, stream);
+      copy_fields(device_, split, staging_, split - c, e - split, true, stream);
+    }
+    if (full || parts_.size() != host_.parts().size()) copy_parts();
     device_.materials.copy_from(host_.materials());
     rep.bodies = n;
     rep.full_from = first;
@@ -181,22 +189,24 @@ class BodyManager {
     return i;
   }
 
-  // Copies bodies [b, e) of the per-step fields, or of all fields if `all`.
+  // Copies `count` bodies from slot `from` of src to slot `to` of dst: the
+  // per-step fields, or all fields if `all`. Synchronous, so src may be reused.
   template <class Dst, class Src>
-  static void copy_fields(Dst& dst, Src& src, std::size_t b, std::size_t e, bool all, stream_t stream) {
-    if (b >= e) return;
+  static void copy_fields(Dst& dst, std::size_t to, Src& src, std::size_t from, std::size_t count, bool all,
+                          stream_t stream) {
+    if (count == 0) return;
     zip_fields(dst, src, [&](auto& d, auto& s, std::size_t rows, bool per_step) {
       if (!all && !per_step) return;
       using E = typename std::remove_reference_t<decltype(d)>::value_type;
       using To = typename std::remove_reference_t<decltype(d)>::memory_kind;
       using From = typename std::remove_reference_t<decltype(s)>::memory_kind;
-      memory::copy_rows<To, From>(d.data() + b, d.pitch() * sizeof(E), s.data() + b,
-                                  s.pitch() * sizeof(E), (e - b) * sizeof(E), rows, false, stream);
+      memory::copy_rows<To, From>(d.data() + to, d.pitch() * sizeof(E), s.data() + from, s.pitch() * sizeof(E),
+                                  count * sizeof(E), rows, false, stream);
     });
   }
 
-  // Writes record i into slot k of the staging store: per-step fields, and all if `all`.
-  void pack(std::size_t i, std::size_t k, bool all) {
+  // Writes record i into slot k of the staging store.
+  void pack(std::size_t i, std::size_t k) {
     const Body<T>& r = host_[i];
     auto& s = staging_;
     s.status(k) = r.status;
@@ -209,10 +219,8 @@ class BodyManager {
     }
     for (std::size_t c = 0; c < 4; ++c) s.q(k, c) = r.q[c];
     s.motion(k) = r.motion;
-    // Shape and mass are needed by update_derived even when not copied.
     s.shape(k) = r.shape;
     for (std::size_t c = 0; c < shape_param_rows; ++c) s.shape_param(k, c) = r.shape_param[c];
-    if (!all) return;
     s.inv_mass(k) = r.inv_mass;
     s.first_part(k) = r.first_part;
     s.material(k) = r.material;
@@ -226,7 +234,7 @@ class BodyManager {
   // of them: parts only ever grow, and a scene holds few).
   void copy_parts() {
     const auto& parts = host_.parts();
-    auto& s = staging_.parts;
+    auto& s = parts_;
     s.resize(parts.size());
     for (std::size_t k = 0; k < parts.size(); ++k) {
       const Part<T>& part = parts[k];
@@ -261,7 +269,8 @@ class BodyManager {
   std::size_t removed_count_ = 0;
   std::vector<std::size_t> added_, removed_;
   std::vector<std::uint32_t> slot_of_, body_of_;  // empty: slot i holds body i
-  Bodies<device::cpu, T> staging_;
+  Bodies<device::cpu, T> staging_;  // up to sync_chunk bodies on their way to or from the device
+  Parts<device::cpu, T> parts_;     // the parts last copied to the device
   Bodies<Device, T> device_;
 };
 
