@@ -7,8 +7,8 @@
 //
 // GPU: the device memory the World holds (its bodies, contacts, warm start,
 // grid, solver and scratch), not the CUDA context. CPU backend: the host
-// memory, which also counts the BodyManager's host copy of the bodies (on the
-// GPU that copy is host memory and not counted).
+// memory, which also counts the BodyManager's staging store (up to sync_chunk
+// bodies; on the GPU it is host memory and not counted).
 #include <cstddef>
 #include <cstdio>
 #include <string>
