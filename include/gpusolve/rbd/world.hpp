@@ -483,7 +483,7 @@ void World<Device, T, Model, Method, Shapes>::reorder_bodies() {
   warm_.renumber(bodies.view(), order_.inverse(n, stream_), stream_);
   std::vector<std::uint32_t> host(n);
   detail::copy_with_host<Device>(host.data(), order, n, true, stream_);
-  manager_.reordered(host, stream_);
+  manager_.reordered(host);
 }
 
 template <class Device, class T, class Model, class Method, ShapeMask Shapes>

@@ -81,11 +81,10 @@ class BodyManager {
 
   // The device bodies were put in `order` (their slot k now holds what slot
   // order[k] held; SpatialOrder): the slots of the BodySet's bodies follow.
-  void reordered(const std::vector<std::uint32_t>& order, stream_t stream = stream_t{}) {
+  void reordered(const std::vector<std::uint32_t>& order) {
     const std::size_t n = device_.size();
     if (order.size() != n)
       throw SizeMismatchError("gpusolve: BodyManager::reordered: the order must name every body's slot once");
-    (void)stream;
     std::vector<std::uint32_t> body_of(n);
     for (std::size_t k = 0; k < n; ++k) body_of[k] = std::uint32_t(body(order[k]));
     slot_of_.assign(n, 0);
