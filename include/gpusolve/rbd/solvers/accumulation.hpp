@@ -145,6 +145,18 @@ struct AddBodySums {
   }
 };
 
+// A distributed solve's apply(): `take(sums)` is the pass that writes this
+// rank's sum of each body into the exchange's store `sums`; the sums are
+// combined over the ranks that hold each body, then added.
+template <class T, class E, class Take, class ToBodies>
+void add_combined_sums(const E& e, std::size_t bodies, const Take& take, const ToBodies& to_bodies) {
+  const VectorD2View<T> sums = e.exchange->sums(bodies);
+  e.each(bodies, take(sums));
+  e.sync();
+  e.combine(bodies);
+  e.each(bodies, AddBodySums<ToBodies, T>{to_bodies, sums});
+}
+
 // The apply() programs of the three strategies.
 template <class BV, class T, bool Sum, class Iterate>
 struct CacheApply {
@@ -162,18 +174,11 @@ struct CacheApply {
       e.sync();
     }
     if constexpr (may_exchange<E>::value)
-      if (e.exchange != nullptr) return combined(e);
+      if (e.exchange != nullptr) {
+        const auto store = [this](VectorD2View<T> sums) { return StoreBodySums<ToBodies, T>{to_bodies, sums}; };
+        return add_combined_sums<T>(e, bodies, store, to_bodies);
+      }
     e.each(bodies, to_bodies);
-  }
-  // A distributed solve: the sums of this rank's contacts, combined over the
-  // ranks that hold each body (in the exchange's store), then added.
-  template <class E>
-  void combined(const E& e) const {
-    const VectorD2View<T> sums = e.exchange->sums(bodies);
-    e.each(bodies, StoreBodySums<ToBodies, T>{to_bodies, sums});
-    e.sync();
-    e.combine(bodies);
-    e.each(bodies, AddBodySums<ToBodies, T>{to_bodies, sums});
   }
 };
 
@@ -228,19 +233,11 @@ struct AtomicApply {
   template <class E>
   GPUSOLVE_HD void operator()(const E& e) const {
     if constexpr (may_exchange<E>::value)
-      if (e.exchange != nullptr) return combined(e);
+      if (e.exchange != nullptr) {
+        const auto take = [this](VectorD2View<T> sums) { return TakePackedSums<T>{to_bodies.sums, sums}; };
+        return add_combined_sums<T>(e, to_bodies.b.size(), take, to_bodies);
+      }
     e.each(to_bodies.b.size(), to_bodies);
-  }
-  // A distributed solve: the sums of this rank's contacts, combined over the
-  // ranks that hold each body (in the exchange's store), then added.
-  template <class E>
-  void combined(const E& e) const {
-    const std::size_t bodies = to_bodies.b.size();
-    const VectorD2View<T> sums = e.exchange->sums(bodies);
-    e.each(bodies, TakePackedSums<T>{to_bodies.sums, sums});
-    e.sync();
-    e.combine(bodies);
-    e.each(bodies, AddBodySums<ToBodies, T>{to_bodies, sums});
   }
 };
 
