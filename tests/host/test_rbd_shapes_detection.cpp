@@ -181,3 +181,57 @@ TEST_CASE("a lattice of touching cubes, 13 candidate partners each, equals the b
   CHECK(detected_contacts(c, n, margin) == expected);
   CHECK(cd.detect(m.device(), c, margin) == n);  // again, from the grown list
 }
+
+TEST_CASE("a neighbour a box's slabs skip has no contact point with the box", "[collision][shapes]") {
+  // Pairs far apart from each other: a box turned at random and a box or a
+  // sphere, turned at random, placed where their bounding spheres come within
+  // the margin (the grid's candidates). Wherever BoxSlabs says apart, the
+  // shape-pair table finds no point; and it says so for a good share of such
+  // pairs, or the filter would not pay.
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<float> u(-1.f, 1.f), size(0.2f, 0.8f);
+  auto turn = [&] {
+    float q[4], len = 0;
+    for (float& x : q) x = u(gen), len += x * x;
+    len = std::sqrt(len);
+    return std::array<float, 4>{q[0] / len, q[1] / len, q[2] / len, q[3] / len};
+  };
+  const float margin = 0.05f;
+  const std::size_t pairs = 20000;
+  BodySet<float> s;
+  for (std::size_t k = 0; k < pairs; ++k) {
+    const float x0 = 10.f * float(k);
+    const SV h(size(gen), size(gen), size(gen));
+    s.add_box({x0, 0.f, 0.f}, {h[0], h[1], h[2]}, 1.f, turn());
+    float r1;
+    SV d(u(gen), u(gen), u(gen));
+    if (k % 2 == 0) {
+      const SV h1(size(gen), size(gen), size(gen));
+      r1 = math::norm(h1);
+      d = d * ((math::norm(h) + r1 + margin) * (0.5f + 0.25f * (u(gen) + 1.f)) / math::norm(d));  // half the reach to all of it
+      s.add_box({x0 + d[0], d[1], d[2]}, {h1[0], h1[1], h1[2]}, 1.f, turn());
+    } else {
+      r1 = size(gen);
+      d = d * ((math::norm(h) + r1 + margin) * (0.5f + 0.25f * (u(gen) + 1.f)) / math::norm(d));
+      s.add_sphere({x0 + d[0], d[1], d[2]}, r1, 1.f);
+    }
+  }
+  BodyManager<device::cpu> m(s);
+  m.syncDevice();
+  const auto v = m.device().view();
+  std::size_t skipped = 0, with_points = 0;
+  for (std::size_t k = 0; k < pairs; ++k) {
+    const std::size_t a = 2 * k, b = a + 1;
+    std::size_t points = 0;
+    for_each_manifold<all_shapes, float>(v, a, b, margin, [&](const Manifold<float>& mf) { points += std::size_t(mf.count); });
+    with_points += points > 0;
+    if (rbd::detail::BoxSlabs<float>(v, a).apart(rbd::detail::grid_sphere<decltype(v), float>(v, b), margin)) {
+      ++skipped;
+      INFO("pair " << k << " skipped, yet " << points << " points");
+      CHECK(points == 0);
+    }
+  }
+  INFO(pairs << " candidate pairs, " << with_points << " with points, " << skipped << " skipped");
+  CHECK(with_points > pairs / 4);
+  CHECK(skipped > pairs / 10);
+}

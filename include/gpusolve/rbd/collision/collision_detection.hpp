@@ -20,6 +20,7 @@
 #include "gpusolve/math.hpp"
 #include "gpusolve/rbd/bodies/bodies.hpp"
 #include "gpusolve/rbd/bodies/validation.hpp"
+#include "gpusolve/rbd/collision/box_slabs.hpp"
 #include "gpusolve/rbd/collision/broad_phase.hpp"
 #include "gpusolve/rbd/contacts/contacts.hpp"
 #include "gpusolve/rbd/collision/body_manifolds.hpp"
@@ -140,15 +141,19 @@ struct ContactWalk {
 
   // Calls visit(j) for each candidate partner j of body i: the grid
   // neighbours j > i whose bounding spheres come within the margin (a fixed
-  // body or a shadow only with active ones) and, for an active body, the
+  // body or a shadow only with active ones; where i is a box, only those that
+  // reach into its slabs: BoxSlabs) and, for an active body, the
   // obstacles near it; the pairs whose manifolds the pair passes (pair_passes.hpp) compute.
   template <class F>
   GPUSOLVE_HD void candidates(std::size_t i, F&& visit) const {
     const GridGeometry<T> g(grid.cell, grid.mask);
     if (!g.holds(b, i, margin)) return;
     const bool active_a = b.status[i] == active;
-    grid(i, [&](std::uint32_t j, const GridSphere<T>&) {
-      if (active_a || b.status[j] == active) visit(j);
+    const BoxSlabs<T> slabs(b, i);
+    grid(i, [&](std::uint32_t j, const GridSphere<T>& o) {
+      if (!active_a && b.status[j] != active) return;
+      if (slabs.apart(o, margin) && slabs_decide(ShapeKind(b.shape[j]))) return;
+      visit(j);
     });
     if (!active_a) return;
     for (std::uint32_t k = 0; k < *obstacle_count; ++k)
