@@ -161,9 +161,13 @@ struct PlaceBodies {
 // A bucket two neighbour cells hash to is visited once; bodies that share a
 // bucket only by a hash collision fail the distance test.
 // A walk is a chain of dependent loads: the 27 buckets' ranges are loaded
-// together, and an entry's index and sphere are independent loads.
+// together, then a cell's entries in batches of `batch` (an entry's index
+// and sphere, read-only here, loaded before the first of the batch is
+// visited), so that a walk waits once a batch instead of once an entry.
 template <class View, class T>
 struct NeighbourWalk {
+  static constexpr int batch = 4;
+
   View b;
   const T* cell;
   std::uint32_t mask;
@@ -191,10 +195,15 @@ struct NeighbourWalk {
     for (int c = 0; c < 27; ++c) first[c] = bucket[h[c]], last[c] = bucket[h[c] + 1];  // no branch between the loads
     for (int c = 0; c < 27; ++c) {
       if ((dup >> c) & 1u) continue;
-      for (std::uint32_t s = first[c]; s < last[c]; ++s) {
-        const std::uint32_t j = index[s];
-        const GridSphere<T> other = spheres[s];
-        if (j > i && spheres_near(me, other, margin)) visit(j, other);
+      for (std::uint32_t s = first[c]; s < last[c]; s += batch) {
+        std::uint32_t j[batch];
+        GridSphere<T> other[batch];
+        GPUSOLVE_UNROLL
+        for (int q = 0; q < batch; ++q)
+          if (s + q < last[c]) j[q] = index[s + q], other[q] = spheres[s + q];
+        GPUSOLVE_UNROLL
+        for (int q = 0; q < batch; ++q)
+          if (s + q < last[c] && j[q] > i && spheres_near(me, other[q], margin)) visit(j[q], other[q]);
       }
     }
   }
