@@ -16,9 +16,9 @@ namespace gpusolve::rbd::detail {
 // outside one of the box's slabs |(y - x) . a_k| <= h_k has no point within the
 // margin of the box along that face axis: box_box (pairs/box_box.hpp) stops
 // at that axis with no points, and sphere_box measures a true distance at least
-// that large, so the pair can be skipped. A bounding sphere reaches about a
-// third again past a cube's face, so most neighbours of a box in a pile are
-// such pairs (docs/detection.md).
+// that large, so the pair can be skipped. A cube's bounding sphere reaches
+// past its faces by 0.73 of a half extent, so a box in a pile lists
+// neighbours its faces cannot meet (docs/detection.md).
 template <class T>
 struct BoxSlabs {
   bool box = false;  // body i is a box: the test applies
