@@ -58,7 +58,9 @@ GPUSOLVE_HD Manifold<T> box_face_contact(const PlacedShape<T>& r, const PlacedSh
   const int u = (j + 1) % 3, v = (j + 2) % 3;
   const math::Vector3<T> fc = o.x + (ipos ? o.p[j] : -o.p[j]) * o.axis(j);
   const math::Vector3<T> eu = o.p[u] * o.axis(u), ev = o.p[v] * o.axis(v);
-  ClipPoint<T> poly[8], next[8];
+  ClipPoint<T> polys[2][8];  // the polygon and the next one, taking turns (no copy between sides)
+  ClipPoint<T>* poly = polys[0];
+  ClipPoint<T>* next = polys[1];
   int n = 4;
   for (std::uint32_t k = 0; k < 4; ++k) {  // corners (+,+), (-,+), (-,-), (+,-) in (u, v)
     const T su = (k == 0 || k == 3) ? T(1) : T(-1), sv = k < 2 ? T(1) : T(-1);
@@ -88,7 +90,8 @@ GPUSOLVE_HD Manifold<T> box_face_contact(const PlacedShape<T>& r, const PlacedSh
       }
     }
     n = m;
-    for (int k = 0; k < n; ++k) poly[k] = next[k];
+    ClipPoint<T>* const done = poly;
+    poly = next, next = done;
   }
   const std::uint32_t base = (std::uint32_t(ref_b) << 12) | (std::uint32_t(2 * i + rpos) << 9) |
                              (std::uint32_t(2 * j + ipos) << 6);
