@@ -161,13 +161,13 @@ struct PlaceBodies {
 // A bucket two neighbour cells hash to is visited once; bodies that share a
 // bucket only by a hash collision fail the distance test.
 // A walk is a chain of dependent loads: the 27 buckets' ranges are loaded
-// together, then a cell's entries in batches of `Batch` (an entry's index
+// together, then a cell's entries in batches of `batch` (an entry's index
 // and sphere, read-only here, loaded before the first of the batch is
-// visited), so that a walk waits once a batch instead of once an entry: worth
-// its registers where cells hold several bodies (boxes, whose cells are sized
-// for their bounding spheres), not where they hold one or two (spheres).
+// visited), so that a walk waits once a batch instead of once an entry.
 template <class View, class T>
 struct NeighbourWalk {
+  static constexpr int batch = 4;
+
   View b;
   const T* cell;
   std::uint32_t mask;
@@ -176,13 +176,8 @@ struct NeighbourWalk {
   const GridSphere<T>* spheres;  // their spheres, in that order
   const std::uint32_t* bucket;   // bucket h: entries [bucket[h], bucket[h + 1]) of `index`
 
-  // One entry at a time (the sphere walks), or Batch at a time (a box's candidates).
   template <class F>
   GPUSOLVE_HD void operator()(std::size_t i, F&& visit) const {
-    walk<1>(i, visit);
-  }
-  template <int Batch, class F>
-  GPUSOLVE_HD void walk(std::size_t i, F&& visit) const {
     const GridGeometry<T> g(cell, mask);
     if (!g.holds(b, i, margin)) return;
     const GridSphere<T> me = grid_sphere<View, T>(b, i);
@@ -200,14 +195,14 @@ struct NeighbourWalk {
     for (int c = 0; c < 27; ++c) first[c] = bucket[h[c]], last[c] = bucket[h[c] + 1];  // no branch between the loads
     for (int c = 0; c < 27; ++c) {
       if ((dup >> c) & 1u) continue;
-      for (std::uint32_t s = first[c]; s < last[c]; s += Batch) {
-        std::uint32_t j[Batch];
-        GridSphere<T> other[Batch];
+      for (std::uint32_t s = first[c]; s < last[c]; s += batch) {
+        std::uint32_t j[batch];
+        GridSphere<T> other[batch];
         GPUSOLVE_UNROLL
-        for (int q = 0; q < Batch; ++q)
+        for (int q = 0; q < batch; ++q)
           if (s + q < last[c]) j[q] = index[s + q], other[q] = spheres[s + q];
         GPUSOLVE_UNROLL
-        for (int q = 0; q < Batch; ++q)
+        for (int q = 0; q < batch; ++q)
           if (s + q < last[c] && j[q] > i && spheres_near(me, other[q], margin)) visit(j[q], other[q]);
       }
     }

@@ -150,7 +150,7 @@ struct ContactWalk {
     if (!g.holds(b, i, margin)) return;
     const bool active_a = b.status[i] == active;
     const BoxSlabs<T> slabs(b, i);
-    grid.template walk<4>(i, [&](std::uint32_t j, const GridSphere<T>& o) {  // cells of several boxes: batches
+    grid(i, [&](std::uint32_t j, const GridSphere<T>& o) {
       if (!active_a && b.status[j] != active) return;
       if (slabs.apart(o, margin) && slabs_decide(ShapeKind(b.shape[j]))) return;
       visit(j);
