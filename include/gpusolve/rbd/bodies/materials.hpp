@@ -168,6 +168,7 @@ struct MaterialPairs {
   struct View {
     const T *friction, *restitution, *rolling, *spinning;
     std::uint32_t count;
+    std::uint32_t unused = 0;  // no indeterminate bytes: a detection's graph key compares views byte by byte
     // The pair of materials a and b, with the world's default material d.
     // (A caller that does not use rolling or spinning does not load them.)
     GPUSOLVE_HD Material<T> pair(std::uint32_t a, std::uint32_t b, const Material<T>& d) const {

@@ -307,6 +307,9 @@ struct DetectionKey {
 
   // GraphReplay compares keys byte by byte, padding included: zeroed here, or
   // what the stack held there would make the same detection capture again.
+  // The views have no padding of their own to carry such bytes in.
+  static_assert(std::has_unique_object_representations_v<View> &&
+                std::has_unique_object_representations_v<ContactView>);
   DetectionKey(const View& b, const ContactView& c, T m, const ContactDefaults<T>& d, std::uint32_t* h,
                ShapeMask s) {
     std::memset(static_cast<void*>(this), 0, sizeof(*this));

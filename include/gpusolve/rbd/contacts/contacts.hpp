@@ -131,6 +131,7 @@ struct Contacts {
     VecD1View phi0, mu, spin, roll, bounce;
     VecD2View dinv, x, slip;
     bool anchored;  // slip holds the friction anchors (keep_anchors)
+    std::uint8_t unused[7] = {};  // no indeterminate bytes: a detection's graph key compares views byte by byte
 
     GPUSOLVE_HD std::size_t size() const {
 #if !GPUSOLVE_DEVICE_CODE
