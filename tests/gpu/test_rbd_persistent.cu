@@ -247,7 +247,8 @@ struct Mirror {
 
 // A persistent grid of at most 16 blocks runs as one thread-block cluster on
 // sm_90 and later (SolverSettings::persistent_clusters): its phases are
-// separated by the cluster's barrier, a larger grid's by the grid's.
+// separated by the cluster's barrier, a larger grid's by the grid's, a grid of
+// one block's by the block's.
 TEST_CASE("GPU persistent kernel: one cluster or the cooperative grid, ordered by its barrier",
           "[rbd_persistent][gpu]") {
   int dev = 0, clusters = 0;
@@ -257,7 +258,7 @@ TEST_CASE("GPU persistent kernel: one cluster or the cooperative grid, ordered b
   const std::size_t count = 50, block = rbd::detail::persistent_block_size,
                     cluster = rbd::detail::persistent_max_cluster;
   for (const bool on : {true, false})
-    for (const std::size_t n : {std::size_t(1000), cluster * block, std::size_t(50000)}) {
+    for (const std::size_t n : {std::size_t(200), std::size_t(1000), cluster * block, std::size_t(50000)}) {
       INFO("clusters " << on << ", " << n << " indices");
       VectorD1<std::uint32_t, device_is<device::gpu>> a(n), b(n);
       b.fill(0u);
@@ -269,6 +270,7 @@ TEST_CASE("GPU persistent kernel: one cluster or the cooperative grid, ordered b
       CHECK((!loop.clustered() || loop.blocks() <= cluster));
       if (clusters && n == 1000) CHECK(loop.clustered() == on);
       if (n == 50000) CHECK_FALSE(loop.clustered());
+      if (n == 200) CHECK(loop.blocks() == 1);  // the block's own barrier (one_block_grid)
       const VectorD1<std::uint32_t> host(b);
       std::size_t wrong = 0;
       for (std::size_t i = 0; i < n; ++i)

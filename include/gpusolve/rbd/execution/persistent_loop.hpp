@@ -53,15 +53,28 @@ inline constexpr unsigned persistent_max_cluster = 16;
 // global memory (a cooperative launch), or, where the grid is one thread-block
 // cluster, the cluster's in hardware. Both order the global memory accesses
 // before them before those after them, for every thread of the grid.
+// A grid of one block (a scene of up to 256 contacts and bodies) takes the
+// block's barrier, which orders its threads' global accesses as well: the
+// grid's and the cluster's release is a GPU-wide fence (MEMBAR.ALL.GPU) and
+// their acquire empties L1 (CCTL.IVALL), so every load after them went to L2.
+__device__ inline bool one_block_grid() { return gridDim.x == 1; }
 struct GridBarrier {
-  __device__ static void sync() { cooperative_groups::this_grid().sync(); }
+  __device__ static void sync() {
+    if (one_block_grid())
+      __syncthreads();
+    else
+      cooperative_groups::this_grid().sync();
+  }
 };
 struct ClusterBarrier {
   __device__ static void sync() {
 #if defined(__CUDA_ARCH__) && __CUDA_ARCH__ < 900
     __trap();  // never launched: the host launches clusters only for sm_90 binaries
 #else
-    cooperative_groups::this_cluster().sync();
+    if (one_block_grid())
+      __syncthreads();
+    else
+      cooperative_groups::this_cluster().sync();
 #endif
   }
 };
