@@ -24,7 +24,8 @@ namespace gpusolve::rbd::detail {
 // copyable) has the bytes it had at the last capture, the graph is launched
 // again without capturing; the caller's key must determine every argument of
 // the launches work would queue (sizes, pointers, parameters), and its
-// padding must be zeroed (DetectionKey), since the padding is compared too.
+// padding, its members' own included, must be zeroed or absent (DetectionKey),
+// since the padding is compared too.
 template <class Device>
 class GraphReplay {
  public:
