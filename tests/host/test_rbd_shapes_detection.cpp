@@ -203,18 +203,15 @@ TEST_CASE("a neighbour a box's slabs skip has no contact point with the box", "[
     const float x0 = 10.f * float(k);
     const SV h(size(gen), size(gen), size(gen));
     s.add_box({x0, 0.f, 0.f}, {h[0], h[1], h[2]}, 1.f, turn());
-    float r1;
     SV d(u(gen), u(gen), u(gen));
-    if (k % 2 == 0) {
-      const SV h1(size(gen), size(gen), size(gen));
-      r1 = math::norm(h1);
-      d = d * ((math::norm(h) + r1 + margin) * (0.5f + 0.25f * (u(gen) + 1.f)) / math::norm(d));  // half the reach to all of it
+    const bool box = k % 2 == 0;
+    const SV h1 = box ? SV(size(gen), size(gen), size(gen)) : SV(0.f, 0.f, 0.f);
+    const float r1 = box ? math::norm(h1) : size(gen);
+    d = d * ((math::norm(h) + r1 + margin) * (0.5f + 0.25f * (u(gen) + 1.f)) / math::norm(d));  // half the reach to all of it
+    if (box)
       s.add_box({x0 + d[0], d[1], d[2]}, {h1[0], h1[1], h1[2]}, 1.f, turn());
-    } else {
-      r1 = size(gen);
-      d = d * ((math::norm(h) + r1 + margin) * (0.5f + 0.25f * (u(gen) + 1.f)) / math::norm(d));
+    else
       s.add_sphere({x0 + d[0], d[1], d[2]}, r1, 1.f);
-    }
   }
   BodyManager<device::cpu> m(s);
   m.syncDevice();
