@@ -101,10 +101,13 @@ struct ContactWalk {
   // The one manifold of two primitives (true; no points where their gap
   // passes the margin), or false where either body is a compound.
   GPUSOLVE_HD bool primitive_manifold(std::size_t i, std::uint32_t j, Manifold<T>& m) const {
-    if constexpr ((M & shape_bit(compound)) != 0)
-      if (b.shape[i] == compound || b.shape[j] == compound) return false;
+    if (holds_compound(i, j)) return false;
     m = collide<M & primitives, T>(b.shape[i], placed_shape<T>(b, i), b.shape[j], placed_shape<T>(b, j), margin);
     return true;
+  }
+  // Whether body i or body j is a compound.
+  GPUSOLVE_HD bool holds_compound(std::size_t i, std::uint32_t j) const {
+    return compounds && (b.shape[i] == compound || b.shape[j] == compound);
   }
   // The number of contact points of the pair (i, j).
   GPUSOLVE_HD std::uint32_t points(std::size_t i, std::uint32_t j) const {
@@ -489,17 +492,18 @@ class CollisionDetection {
                                                     c.bound()}},
              stream);
     } else {
-      queue_pair_passes(walk, writer, n, hold, c.bound(), stream);
+      queue_pair_passes(walk, writer, n, hold, c.bound(), (bodies.shapes & shape_bit(compound)) != 0, stream);
     }
   }
 
   // Candidates per body (the count pass over CandidateWalk, then a scan),
   // listed per pair, then each pair's points counted, scanned and written by
   // a thread of its own. The passes run over the candidate list's capacity,
-  // so no count comes back to the host between them.
+  // so no count comes back to the host between them. Compound pairs take
+  // passes of their own, queued only while the scene holds a compound.
   template <class Walk, class Writer>
   void queue_pair_passes(const Walk& walk, const Writer& writer, std::size_t n, std::uint32_t* hold,
-                         std::size_t contact_capacity, stream_t stream) {
+                         std::size_t contact_capacity, bool compounds, stream_t stream) {
     const Device dev{};
     const std::size_t capacity = candidate_a_.size_x();
     const std::uint32_t* candidates = offset_.data() + (n - 1);
@@ -511,18 +515,29 @@ class CollisionDetection {
            detail::WriteCandidates<Walk>{walk, offset_.data(), count_.data(), kept_.data(), n, candidate_a_.data(),
                                          candidate_b_.data(), capacity},
            stream);
-    launch(dev, capacity,
-           detail::CountPairPoints<Walk, T>{walk, candidate_a_.data(), candidate_b_.data(), candidates, capacity,
-                                            pair_points_.data(), manifolds_.data()},
-           stream);
+    const auto count = [&](auto pass) {
+      launch(dev, capacity,
+             detail::CountPairPoints<Walk, T, decltype(pass)::value>{walk, candidate_a_.data(), candidate_b_.data(),
+                                                                     candidates, capacity, pair_points_.data(),
+                                                                     manifolds_.data()},
+             stream);
+    };
+    count(std::false_type{});
+    if constexpr (Walk::compounds)
+      if (compounds) count(std::true_type{});
     algorithms_.inclusive_sum(pair_points_.data(), point_offset_.data(), capacity, stream);
-    launch(dev, capacity,
-           detail::WritePairContacts<Writer, detail::Summarize<T>, T>{
-               writer, candidate_a_.data(), candidate_b_.data(), point_offset_.data(), pair_points_.data(),
-               manifolds_.data(),
-               {point_offset_.data() + (capacity - 1), scan_.data(), summary_.data(), hold, contact_capacity,
-                candidates, capacity}},
-           stream);
+    const auto write = [&](auto pass) {
+      launch(dev, capacity,
+             detail::WritePairContacts<Writer, detail::Summarize<T>, T, decltype(pass)::value>{
+                 writer, candidate_a_.data(), candidate_b_.data(), point_offset_.data(), pair_points_.data(),
+                 manifolds_.data(),
+                 {point_offset_.data() + (capacity - 1), scan_.data(), summary_.data(), hold, contact_capacity,
+                  candidates, capacity}},
+             stream);
+    };
+    write(std::false_type{});
+    if constexpr (Walk::compounds)
+      if (compounds) write(std::true_type{});
   }
 
   UniformGrid<Device, T> grid_;

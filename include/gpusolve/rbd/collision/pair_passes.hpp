@@ -125,7 +125,11 @@ struct WriteCandidates {
 // whose part pairs' manifolds merged into one) keeps it in manifold[k] for the
 // write pass (computed once, and the two passes cannot disagree); a pair with
 // several is marked count -1 and written from its manifolds computed again.
-template <class Walk, class T>
+// Where the walk compiles compounds in, their pairs take a pass of their own
+// (`Compounds`), launched after this one and only while the scene holds one:
+// this pass leaves them no points, and holds no compound code, whose registers
+// (155 against 114 for every other pair, sm_90) would thin every pair's kernel.
+template <class Walk, class T, bool Compounds = false>
 struct CountPairPoints {
   Walk walk;
   const std::uint32_t *a, *b;
@@ -134,23 +138,29 @@ struct CountPairPoints {
   std::uint32_t* points;
   Manifold<T>* manifold;
   GPUSOLVE_HD void operator()(std::size_t k) const {
-    std::uint32_t p = 0;
-    Manifold<T> m;
-    if (k < *candidates && *candidates <= capacity && a[k] != b[k]) {
-      if (walk.primitive_manifold(a[k], b[k], m))
-        p = std::uint32_t(m.count);
-      else
-        p = walk.points(a[k], b[k], m);
+    const bool listed = k < *candidates && *candidates <= capacity && a[k] != b[k];
+    if constexpr (Compounds) {
+      if (!listed || !walk.holds_compound(a[k], b[k])) return;
+      Manifold<T> m;
+      const std::uint32_t p = walk.points(a[k], b[k], m);
+      points[k] = p;
+      if (p > 0) manifold[k] = m;
+    } else {
+      std::uint32_t p = 0;
+      Manifold<T> m;
+      if (listed && walk.primitive_manifold(a[k], b[k], m)) p = std::uint32_t(m.count);
+      points[k] = p;
+      if (p > 0) manifold[k] = m;
     }
-    points[k] = p;
-    if (p > 0) manifold[k] = m;
   }
 };
 
 // Writes candidate pair k's points at [offset[k] - points[k], offset[k]),
 // unless that passes the contacts' capacity (their view's size): the caller
 // grows and repeats. Pair 0's thread also writes the summary the host reads.
-template <class Writer, class Summary, class T>
+// A pair of several manifolds (count -1, a compound's) is written from its
+// manifolds computed again, by a pass of its own (`Compounds`) as in CountPairPoints.
+template <class Writer, class Summary, class T, bool Compounds = false>
 struct WritePairContacts {
   Writer writer;
   const std::uint32_t *a, *b;
@@ -159,12 +169,15 @@ struct WritePairContacts {
   const Manifold<T>* manifold;
   Summary summarize;
   GPUSOLVE_HD void operator()(std::size_t k) const {
-    if (k == 0) summarize(0);
+    if (!Compounds && k == 0) summarize(0);
     if (points[k] == 0 || offset[k] > writer.contacts.size()) return;
     const std::uint32_t first = offset[k] - points[k];
-    const Manifold<T> m = manifold[k];
-    if (m.count < 0) return writer.pair(first, offset[k], a[k], b[k]);
-    for (int q = 0; q < m.count; ++q) writer.write(first + std::uint32_t(q), a[k], b[k], m, q);
+    if constexpr (Compounds) {
+      if (manifold[k].count < 0) writer.pair(first, offset[k], a[k], b[k]);
+    } else {
+      const Manifold<T> m = manifold[k];
+      for (int q = 0; q < m.count; ++q) writer.write(first + std::uint32_t(q), a[k], b[k], m, q);
+    }
   }
 };
 
