@@ -421,7 +421,7 @@ class CollisionDetection {
     gpusolve::detail::ensure_size(obstacle_count_, 1);
     gpusolve::detail::ensure_size(count_, n);
     gpusolve::detail::ensure_size(offset_, n);
-    gpusolve::detail::ensure_size(kept_, detail::kept_contacts * n);
+    gpusolve::detail::ensure_size(kept_, detail::kept_candidates * n);
     gpusolve::detail::ensure_size(summary_, 1);
     gpusolve::detail::ensure_size(scan_, 1);
     if (contacts.capacity() < contacts_per_body_ * n) contacts.resize(contacts_per_body_ * n);
@@ -508,7 +508,7 @@ class CollisionDetection {
     const std::size_t capacity = candidate_a_.size_x();
     const std::uint32_t* candidates = offset_.data() + (n - 1);
     launch(dev, n,
-           detail::CountPartners<detail::CandidateWalk<Walk>>{{walk}, count_.data(), kept_.data(), n},
+           detail::CountPartners<detail::CandidateWalk<Walk>, detail::kept_candidates>{{walk}, count_.data(), kept_.data(), n},
            stream);
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
     launch(dev, n,

@@ -106,7 +106,7 @@ struct WriteCandidates {
     const std::uint32_t first = offset[i] - count[i], last = offset[i];
     if (last > capacity) return;
     for (std::uint32_t p = first; p < last; ++p) a[p] = std::uint32_t(i);
-    if (count[i] <= kept_contacts) {
+    if (count[i] <= kept_candidates) {
       for (std::uint32_t p = 0; p < count[i]; ++p) b[first + p] = kept[p * n + i];
       return;
     }
