@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <set>
 #include <tuple>
 #include <vector>
 
@@ -159,9 +160,8 @@ TEST_CASE("a lattice of touching cubes, 13 candidate partners each, equals the b
           "[collision][shapes]") {
   // Cubes of half extent 0.5 one apart: every face, edge and corner neighbour's
   // bounding sphere comes within the margin, past the pair passes' first list
-  // (4 a body) and past the candidates a body keeps (12), so the list grows and
-  // bodies walk twice. Slightly turned, so that edges and corners touch too.
-  static_assert(13 > rbd::detail::kept_candidates, "the lattice must pass the kept candidates");
+  // (4 a body), so the list grows. Slightly turned, so that edges and corners
+  // touch too.
   BodySet<float> s;
   s.add_plane({0.f, 0.f, 1.f}, 0.f);
   for (int z = 0; z < 6; ++z)
@@ -181,6 +181,35 @@ TEST_CASE("a lattice of touching cubes, 13 candidate partners each, equals the b
   CHECK(expected.size() > 4 * s.size());
   CHECK(detected_contacts(c, n, margin) == expected);
   CHECK(cd.detect(m.device(), c, margin) == n);  // again, from the grown list
+}
+
+TEST_CASE("a box with more candidates than the count pass keeps lists them all from a second walk",
+          "[collision][shapes]") {
+  // A box of half extent 2 (body 0) with 16 cubes of half extent 0.5 on each
+  // face, just apart: 96 partners past it, more than the walk keeps per body.
+  BodySet<float> s;
+  s.add_box({0.f, 0.f, 0.f}, {2.f, 2.f, 2.f}, 8.f);
+  for (int axis = 0; axis < 3; ++axis)
+    for (float side : {-1.f, 1.f})
+      for (float u : {-1.5f, -0.5f, 0.5f, 1.5f})
+        for (float w : {-1.5f, -0.5f, 0.5f, 1.5f}) {
+          float x[3];
+          x[axis] = side * 2.51f, x[(axis + 1) % 3] = u, x[(axis + 2) % 3] = w;
+          s.add_box({x[0], x[1], x[2]}, {0.5f, 0.5f, 0.5f}, 1.f);
+        }
+  const float margin = 0.05f;
+  BodyManager<device::cpu> m(s);
+  m.syncDevice();
+  CollisionDetection<device::cpu> cd;
+  Contacts<device::cpu, float, Frictionless> c;
+  const std::size_t n = cd.detect(m.device(), c, margin);
+  const Found expected = brute_force_contacts(s, m.device().view(), margin);
+  std::set<std::uint32_t> partners;
+  for (const auto& [a, b, feature] : expected)
+    if (a == 0) partners.insert(b);
+  REQUIRE(partners.size() == 96);
+  REQUIRE(partners.size() > rbd::detail::kept_candidates);
+  CHECK(detected_contacts(c, n, margin) == expected);
 }
 
 TEST_CASE("a neighbour a box's slabs skip has no contact point with the box", "[collision][shapes]") {

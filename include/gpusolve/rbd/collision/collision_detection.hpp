@@ -421,11 +421,12 @@ class CollisionDetection {
     gpusolve::detail::ensure_size(obstacle_count_, 1);
     gpusolve::detail::ensure_size(count_, n);
     gpusolve::detail::ensure_size(offset_, n);
-    gpusolve::detail::ensure_size(kept_, detail::kept_candidates * n);
+    const bool pair_passes = (bodies.shapes & ~spheres_and_planes) != 0;
+    gpusolve::detail::ensure_size(kept_, (pair_passes ? detail::kept_candidates : detail::kept_contacts) * n);
     gpusolve::detail::ensure_size(summary_, 1);
     gpusolve::detail::ensure_size(scan_, 1);
     if (contacts.capacity() < contacts_per_body_ * n) contacts.resize(contacts_per_body_ * n);
-    if ((bodies.shapes & ~spheres_and_planes) != 0 && candidate_a_.size_x() < 4 * n) {  // the pair passes run
+    if (pair_passes && candidate_a_.size_x() < 4 * n) {
       for (D1<std::uint32_t>* v : {&candidate_a_, &candidate_b_, &pair_points_, &point_offset_})
         gpusolve::detail::ensure_size(*v, 4 * n);
       manifolds_.resize(candidate_a_.size_x());

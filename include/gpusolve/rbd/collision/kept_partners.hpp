@@ -12,13 +12,14 @@ namespace gpusolve::rbd::detail {
 
 // The pairs a count pass keeps per body (the b bodies, sorted), so that the
 // write pass reads them instead of walking the grid a second time; a body with
-// more walks again, and a write pass lasts as long as its longest walk. An
+// more walks again, and the write pass waits for its longest walk. An
 // equal sphere touches at most 12 others, about half of them with a larger
 // index, and a few walls: the contact walk of spheres keeps 8. A box's
-// candidates (bounding spheres within the margin, past its slabs' test) run
-// to 10 in a settled cube pile (docs/detection.md): the candidate walk keeps 12.
+// candidates (bounding spheres within the margin, past its slabs' test, and
+// the planes) run to 14 in the shared cube pile (docs/detection.md): the
+// candidate walk keeps 16, at no register more.
 inline constexpr std::uint32_t kept_contacts = 8;
-inline constexpr std::uint32_t kept_candidates = 12;
+inline constexpr std::uint32_t kept_candidates = 16;
 static_assert(kept_candidates >= kept_contacts, "the store of kept partners is sized for the candidates");
 
 // Insertion sort of a body's few partners, in place.

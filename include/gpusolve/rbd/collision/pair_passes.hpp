@@ -139,19 +139,16 @@ struct CountPairPoints {
   Manifold<T>* manifold;
   GPUSOLVE_HD void operator()(std::size_t k) const {
     const bool listed = k < *candidates && *candidates <= capacity && a[k] != b[k];
+    std::uint32_t p = 0;
+    Manifold<T> m;
     if constexpr (Compounds) {
       if (!listed || !walk.holds_compound(a[k], b[k])) return;
-      Manifold<T> m;
-      const std::uint32_t p = walk.points(a[k], b[k], m);
-      points[k] = p;
-      if (p > 0) manifold[k] = m;
-    } else {
-      std::uint32_t p = 0;
-      Manifold<T> m;
-      if (listed && walk.primitive_manifold(a[k], b[k], m)) p = std::uint32_t(m.count);
-      points[k] = p;
-      if (p > 0) manifold[k] = m;
+      p = walk.points(a[k], b[k], m);
+    } else if (listed && walk.primitive_manifold(a[k], b[k], m)) {
+      p = std::uint32_t(m.count);
     }
+    points[k] = p;
+    if (p > 0) manifold[k] = m;
   }
 };
 
