@@ -508,9 +508,8 @@ class CollisionDetection {
     const Device dev{};
     const std::size_t capacity = candidate_a_.size_x();
     const std::uint32_t* candidates = offset_.data() + (n - 1);
-    launch(dev, n,
-           detail::CountPartners<detail::CandidateWalk<Walk>, detail::kept_candidates>{{walk}, count_.data(), kept_.data(), n},
-           stream);
+    using CountCandidates = detail::CountPartners<detail::CandidateWalk<Walk>, detail::kept_candidates>;
+    launch(dev, n, CountCandidates{{walk}, count_.data(), kept_.data(), n}, stream);
     algorithms_.inclusive_sum(count_.data(), offset_.data(), n, stream);
     launch(dev, n,
            detail::WriteCandidates<Walk>{walk, offset_.data(), count_.data(), kept_.data(), n, candidate_a_.data(),
