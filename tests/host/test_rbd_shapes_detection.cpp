@@ -78,6 +78,22 @@ Found detected_contacts(const C& c, std::size_t n, float margin) {
   return found;
 }
 
+// One detection of the bodies s on the CPU backend, beside the brute-force search's contacts.
+struct DetectionBesideSearch {
+  BodyManager<device::cpu> m;
+  CollisionDetection<device::cpu> cd;
+  Contacts<device::cpu, float, Frictionless> c;
+  float margin;
+  std::size_t n = 0;
+  Found expected;
+  DetectionBesideSearch(BodySet<float>& s, float margin_) : m(s), margin(margin_) {
+    m.syncDevice();
+    n = cd.detect(m.device(), c, margin);
+    expected = brute_force_contacts(s, m.device().view(), margin);
+  }
+  Found found() const { return detected_contacts(c, n, margin); }
+};
+
 }  // namespace
 
 TEST_CASE("every shape pair of the table equals its reversed pair with the normal turned", "[collision][shapes]") {
@@ -133,19 +149,11 @@ TEST_CASE("contacts of a mixed heap equal a brute-force search through the shape
   s.add_compound({8.f, 2.f, 0.21f}, clump<float>(), 1.f);                  // on the plane, a box on it
   s.add_box({8.f, 2.f, 0.75f}, {0.3f, 0.3f, 0.3f}, 1.f);
   s[7].status = removed;
-  const float margin = 0.05f;
-  BodyManager<device::cpu> m(s);
-  m.syncDevice();
-  auto& b = m.device();
-  CollisionDetection<device::cpu> cd;
-  Contacts<device::cpu, float, Frictionless> c;
-  const std::size_t n = cd.detect(b, c, margin);
-
-  const auto expected = brute_force_contacts(s, b.view(), margin);
-  CHECK(detected_contacts(c, n, margin) == expected);
+  const DetectionBesideSearch d(s, 0.05f);
+  CHECK(d.found() == d.expected);
   // Every pair of kinds is among them (plane-plane aside), compounds too.
   std::array<std::array<std::size_t, shape_kinds>, shape_kinds> kinds{};
-  for (const auto& e : expected) {
+  for (const auto& e : d.expected) {
     const int ka = s[std::get<0>(e)].shape, kb = s[std::get<1>(e)].shape;
     ++kinds[std::min(ka, kb)][std::max(ka, kb)];
   }
@@ -171,16 +179,10 @@ TEST_CASE("a lattice of touching cubes, 13 candidate partners each, equals the b
         s.add_box({float(x), float(y), 0.5f + float(z)}, {0.5f, 0.5f, 0.5f}, 1.f,
                   {std::sqrt(1.f - qx * qx - qz * qz), qx, 0.f, qz});
       }
-  const float margin = 0.05f;
-  BodyManager<device::cpu> m(s);
-  m.syncDevice();
-  CollisionDetection<device::cpu> cd;
-  Contacts<device::cpu, float, Frictionless> c;
-  const std::size_t n = cd.detect(m.device(), c, margin);
-  const Found expected = brute_force_contacts(s, m.device().view(), margin);
-  CHECK(expected.size() > 4 * s.size());
-  CHECK(detected_contacts(c, n, margin) == expected);
-  CHECK(cd.detect(m.device(), c, margin) == n);  // again, from the grown list
+  DetectionBesideSearch d(s, 0.05f);
+  CHECK(d.expected.size() > 4 * s.size());
+  CHECK(d.found() == d.expected);
+  CHECK(d.cd.detect(d.m.device(), d.c, d.margin) == d.n);  // again, from the grown list
 }
 
 TEST_CASE("a box with more candidates than the count pass keeps lists them all from a second walk",
@@ -197,19 +199,13 @@ TEST_CASE("a box with more candidates than the count pass keeps lists them all f
           x[axis] = side * 2.51f, x[(axis + 1) % 3] = u, x[(axis + 2) % 3] = w;
           s.add_box({x[0], x[1], x[2]}, {0.5f, 0.5f, 0.5f}, 1.f);
         }
-  const float margin = 0.05f;
-  BodyManager<device::cpu> m(s);
-  m.syncDevice();
-  CollisionDetection<device::cpu> cd;
-  Contacts<device::cpu, float, Frictionless> c;
-  const std::size_t n = cd.detect(m.device(), c, margin);
-  const Found expected = brute_force_contacts(s, m.device().view(), margin);
+  DetectionBesideSearch d(s, 0.05f);
   std::set<std::uint32_t> partners;
-  for (const auto& [a, b, feature] : expected)
+  for (const auto& [a, b, feature] : d.expected)
     if (a == 0) partners.insert(b);
   REQUIRE(partners.size() == 96);
   REQUIRE(partners.size() > rbd::detail::kept_candidates);
-  CHECK(detected_contacts(c, n, margin) == expected);
+  CHECK(d.found() == d.expected);
 }
 
 TEST_CASE("a neighbour a box's slabs skip has no contact point with the box", "[collision][shapes]") {
