@@ -421,7 +421,7 @@ class CollisionDetection {
     gpusolve::detail::ensure_size(obstacle_count_, 1);
     gpusolve::detail::ensure_size(count_, n);
     gpusolve::detail::ensure_size(offset_, n);
-    const bool pair_passes = (bodies.shapes & ~spheres_and_planes) != 0;
+    const bool pair_passes = takes_pair_passes(bodies);
     gpusolve::detail::ensure_size(kept_, (pair_passes ? detail::kept_candidates : detail::kept_contacts) * n);
     gpusolve::detail::ensure_size(summary_, 1);
     gpusolve::detail::ensure_size(scan_, 1);
@@ -464,8 +464,15 @@ class CollisionDetection {
       throw InvalidArgumentError("gpusolve: CollisionDetection: the bodies hold shape kinds that were not compiled in "
                                  "(its Shapes)");
     if constexpr ((Shapes & ~spheres_and_planes) != 0)
-      if ((bodies.shapes & ~spheres_and_planes) != 0) return queue_contacts<Shapes>(bodies, c, margin, defaults, hold, stream);
+      if (takes_pair_passes(bodies)) return queue_contacts<Shapes>(bodies, c, margin, defaults, hold, stream);
     queue_contacts<spheres_and_planes>(bodies, c, margin, defaults, hold, stream);
+  }
+
+  // Whether a detection of these bodies runs the pair passes (queue_pair_passes)
+  // rather than the spheres' walk: the one place that decides, so that the
+  // scratch begin() sizes (the kept partners) is the path's.
+  static bool takes_pair_passes(const Bodies<Device, T>& bodies) {
+    return (Shapes & ~spheres_and_planes) != 0 && (bodies.shapes & ~spheres_and_planes) != 0;
   }
 
   template <ShapeMask M, class CView>
